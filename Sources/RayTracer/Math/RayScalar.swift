@@ -1,0 +1,34 @@
+import RealModule
+
+/// A floating-point type the renderer computes in.
+///
+/// Renders run in `Float` or `Double`; `Float80`, where the platform has it,
+/// serves as the high-precision reference that errors are measured against.
+/// The choice is made inside this module (see `Precision`), so every generic
+/// function here is specialised for the concrete type rather than dispatched
+/// through witness tables.
+public protocol RayScalar: Real, BinaryFloatingPoint, Sendable {}
+
+extension Float: RayScalar {}
+extension Double: RayScalar {}
+#if (arch(i386) || arch(x86_64)) && !os(Windows) && !os(Android)
+extension Float80: RayScalar {}
+
+/// The widest floating-point type available: the reference precision.
+public typealias ReferenceScalar = Float80
+#else
+public typealias ReferenceScalar = Double
+#endif
+
+/// The precision a render computes in, as chosen on the command line.
+public enum Precision: String, CaseIterable, Sendable {
+  case float
+  case double
+}
+
+extension RayScalar {
+  /// Converts exactly when `self` is representable, otherwise rounds to
+  /// nearest; used where Double scene values enter a render precision.
+  @inlinable
+  static func from(_ value: Double) -> Self { Self(value) }
+}

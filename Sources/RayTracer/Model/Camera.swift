@@ -1,0 +1,92 @@
+import RealModule
+
+/// A pinhole camera with a horizontal field of view (the course's
+/// `PerspectiveCamera`).
+///
+/// The basis is w = direction, u = w × up, v = u × w (all unit length): u points
+/// right and v up in the image. A screen point (x, y) in [−1, 1]² maps to the
+/// ray direction x·u + (H/W)·y·v + D·w with D = 1 / tan(angle / 2), normalised,
+/// so that t is a distance.
+public struct PerspectiveCamera<Scalar: RayScalar>: Hashable, Sendable {
+  public var center: Vector3<Scalar>
+  public var direction: Vector3<Scalar>
+  public var horizontal: Vector3<Scalar>
+  public var up: Vector3<Scalar>
+  /// Horizontal field of view in degrees, 0 < angle < 180.
+  public var angle: Scalar
+  /// D = 1 / tan(angle / 2): the image plane's distance for a half-width of 1.
+  public var focalDistance: Scalar
+
+  /// Nil when the direction is zero or parallel to up, or the angle is not
+  /// in (0, 180): there is no camera basis then.
+  public init?(
+    center: Vector3<Scalar>, direction: Vector3<Scalar>,
+    up: Vector3<Scalar>, angle: Scalar
+  ) {
+    guard angle > 0 && angle < 180, direction.maxMagnitude > 0 else {
+      return nil
+    }
+    let w = direction.normalized()
+    let right = w.cross(up.normalized())
+    guard right.maxMagnitude > 0, right.isFinite else { return nil }
+    let u = right.normalized()
+    self.center = center
+    self.direction = w
+    self.horizontal = u
+    self.up = u.cross(w)
+    self.angle = angle
+    self.focalDistance = 1 / Scalar.tan(angle * .pi / 360)
+    guard focalDistance.isFinite && focalDistance > 0 else { return nil }
+  }
+
+  /// The same camera in another precision, each vector rounded once from
+  /// the basis computed here (so Float renders get Double's basis, rounded).
+  public init<Other: RayScalar>(_ other: PerspectiveCamera<Other>) {
+    center = Vector3(other.center)
+    direction = Vector3(other.direction)
+    horizontal = Vector3(other.horizontal)
+    up = Vector3(other.up)
+    angle = Scalar(other.angle)
+    focalDistance = Scalar(other.focalDistance)
+  }
+
+  /// The unit direction through screen point (x, y); `aspect` is H / W.
+  @inlinable
+  public func rayDirection(x: Scalar, y: Scalar, aspect: Scalar) -> Vector3<Scalar> {
+    (horizontal * x + up * (aspect * y) + direction * focalDistance).normalized()
+  }
+}
+
+/// Which of the two conventions measured from the course's images (see the
+/// README): where pixels sample the screen, and how depth, normals and colour
+/// become 8-bit values.
+public enum ImageStyle: String, CaseIterable, Sendable {
+  /// The Swift course: pixel centres, depth range from the image, |n|,
+  /// truncation.
+  case course
+  /// The original assignment: pixel corners, depth range from the command
+  /// line, (n + 1)/2, rounding, point lights attenuated by falloff·dist².
+  case mit
+
+  /// The screen coordinate of column i of W, in [−1, 1], left to right.
+  @inlinable
+  public func screenX<S: RayScalar>(column i: Int, width: Int) -> S {
+    switch self {
+    case .course:
+      return S(2 * i + 1) / S(width) - 1
+    case .mit:
+      return width > 1 ? S(2 * i) / S(width - 1) - 1 : 0
+    }
+  }
+
+  /// The screen coordinate of row j of H, in [−1, 1], top to bottom.
+  @inlinable
+  public func screenY<S: RayScalar>(row j: Int, height: Int) -> S {
+    switch self {
+    case .course:
+      return 1 - S(2 * j + 1) / S(height)
+    case .mit:
+      return height > 1 ? 1 - S(2 * j) / S(height - 1) : 0
+    }
+  }
+}

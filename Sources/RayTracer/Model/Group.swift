@@ -1,0 +1,69 @@
+/// A list of objects, nested groups included, hit as one.
+public struct Group<Scalar: RayScalar>: Hashable, Sendable {
+  public var objects: [SceneObject<Scalar>]
+
+  public init(_ objects: [SceneObject<Scalar>] = []) {
+    self.objects = objects
+  }
+
+  /// Every sphere and plane, nested groups flattened, in file order.
+  public func primitives() -> (spheres: [Sphere<Scalar>], planes: [Plane<Scalar>]) {
+    var spheres: [Sphere<Scalar>] = []
+    var planes: [Plane<Scalar>] = []
+    func collect(_ group: Group) {
+      for object in group.objects {
+        switch object {
+        case .sphere(let sphere): spheres.append(sphere)
+        case .plane(let plane): planes.append(plane)
+        case .group(let nested): collect(nested)
+        }
+      }
+    }
+    collect(self)
+    return (spheres, planes)
+  }
+}
+
+/// One entry of a group. An enum rather than `any Intersectable`, so that
+/// even the model's own traversal dispatches statically.
+public indirect enum SceneObject<Scalar: RayScalar>: Hashable, Sendable {
+  case sphere(Sphere<Scalar>)
+  case plane(Plane<Scalar>)
+  case group(Group<Scalar>)
+}
+
+extension SceneObject: Intersectable {
+  public func intersect(
+    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar
+  ) -> Hit<Scalar>? {
+    switch self {
+    case .sphere(let sphere): sphere.intersect(ray, after: tMin, before: tMax)
+    case .plane(let plane): plane.intersect(ray, after: tMin, before: tMax)
+    case .group(let group): group.intersect(ray, after: tMin, before: tMax)
+    }
+  }
+}
+
+extension Group: Intersectable {
+  /// The nearest hit among the objects; each later object only has to beat
+  /// the nearest so far.
+  public func intersect(
+    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar
+  ) -> Hit<Scalar>? {
+    var nearest: Hit<Scalar>?
+    for object in objects {
+      if let hit = object.intersect(
+        ray, after: tMin, before: nearest?.t ?? tMax)
+      {
+        nearest = hit
+      }
+    }
+    return nearest
+  }
+
+  public func occludes(
+    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar
+  ) -> Bool {
+    objects.contains { $0.occludes(ray, after: tMin, before: tMax) }
+  }
+}

@@ -1,0 +1,15 @@
+/// The nearest intersection of a ray with an object.
+public struct Hit<Scalar: RayScalar>: Hashable, Sendable {
+  /// Distance along the ray in multiples of its direction's length.
+  public var t: Scalar
+  /// Unit normal: outward for spheres, along the given normal for planes.
+  public var normal: Vector3<Scalar>
+  public var materialIndex: Int
+
+  @inlinable
+  public init(t: Scalar, normal: Vector3<Scalar>, materialIndex: Int) {
+    self.t = t
+    self.normal = normal
+    self.materialIndex = materialIndex
+  }
+}

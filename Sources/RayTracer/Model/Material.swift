@@ -1,0 +1,56 @@
+import RealModule
+
+/// A Phong material (the course's `Material` and `PhongMaterial` are the same).
+public struct Material<Scalar: RayScalar>: Hashable, Sendable {
+  public var diffuse: RGB<Scalar>
+  public var specular: RGB<Scalar>
+  public var shininess: Scalar
+
+  /// White and matte: the course's default when a scene has no materials.
+  public static var defaultWhite: Material {
+    Material(diffuse: Vector3(1, 1, 1))
+  }
+
+  public init(
+    diffuse: RGB<Scalar>, specular: RGB<Scalar> = .zero, shininess: Scalar = 0
+  ) {
+    self.diffuse = diffuse
+    self.specular = specular
+    self.shininess = shininess
+  }
+
+  public init<Other: RayScalar>(_ other: Material<Other>) {
+    self.init(
+      diffuse: Vector3(other.diffuse), specular: Vector3(other.specular),
+      shininess: Scalar(other.shininess))
+  }
+
+  /// ambient·kd + Σ lights [kd·max(0, n·l) + ks·max(0, −d·r)^shininess]·light,
+  /// with r = 2(n·l)n − l and the specular term only where n·l > 0.
+  ///
+  /// - Parameters:
+  ///   - normal: unit normal at the hit.
+  ///   - viewDirection: the unit ray direction d (towards the hit).
+  @inlinable
+  public func shade(
+    point: Vector3<Scalar>, normal: Vector3<Scalar>,
+    viewDirection: Vector3<Scalar>, ambient: RGB<Scalar>,
+    lights: [Light<Scalar>], attenuate: Bool
+  ) -> RGB<Scalar> {
+    var color = ambient * diffuse
+    for light in lights {
+      let (toLight, lightColor) = light.illumination(
+        at: point, attenuate: attenuate)
+      let cosine = normal.dot(toLight)
+      guard cosine > 0 else { continue }
+      var intensity = diffuse * cosine
+      let reflected = normal * (2 * cosine) - toLight
+      let highlight = -viewDirection.dot(reflected)
+      if highlight > 0 {
+        intensity += specular * Scalar.pow(highlight, shininess)
+      }
+      color += intensity * lightColor
+    }
+    return color
+  }
+}

@@ -1,0 +1,90 @@
+/// The two ways of solving |o + t·d − centre|² = r² for t, shared by the
+/// public `Sphere` and the render loop.
+///
+/// Both return the nearest root in the open interval (tMin, tMax), so a ray
+/// starting inside the sphere (or on it, with tMin = 0) hits the far side.
+public enum SphereIntersection {
+  /// The course's textbook formula, kept for comparison and for the course's
+  /// images: a = d·d, b = 2f·d, c = f·f − r² with f = o − centre,
+  /// t = (−b ∓ √(b² − 4ac)) / 2a.
+  ///
+  /// It fails in three known ways: b² − 4ac cancels for a small far sphere
+  /// (every digit lost once L/r ≳ ε^(−1/2)); −b + √Δ cancels for the far root;
+  /// and c = |f|² − r² cancels for a huge sphere seen from close by.
+  @inlinable
+  public static func naiveRoot<S: RayScalar>(
+    origin: Vector3<S>, direction: Vector3<S>,
+    center: Vector3<S>, radius: S, after tMin: S, before tMax: S
+  ) -> S? {
+    let f = origin - center
+    let a = direction.dot(direction)
+    let b = 2 * f.dot(direction)
+    let c = f.dot(f) - radius * radius
+    let discriminant = b * b - 4 * a * c
+    guard discriminant >= 0 else { return nil }
+    let root = discriminant.squareRoot()
+    let near = (-b - root) / (2 * a)
+    if near > tMin && near < tMax { return near }
+    let far = (-b + root) / (2 * a)
+    if far > tMin && far < tMax { return far }
+    return nil
+  }
+
+  /// The cancellation-free solution, with the sphere given relative to the
+  /// ray's origin: `offset` p = centre − origin and `c` = |p|² − r² (computed
+  /// accurately by `CameraRelative.sphere` or `Sphere.relative(to:)`).
+  ///
+  /// With s = p·d, the discriminant is taken as a·(r² − |l|²), where
+  /// l = p − (s/a)·d is the centre's offset from the ray's line (pbrt-v4;
+  /// Haines et al., Ray Tracing Gems ch. 7): l is computed component-wise
+  /// without cancelling, where s² − ac loses everything for a small far
+  /// sphere. The roots are q/a and c/q with q = s + sign(s)·√Δ, so no root is
+  /// found by subtracting nearly equal numbers.
+  ///
+  /// - Returns: the nearest root in (tMin, tMax); nil on a miss, including a
+  ///   tangent ray whose double root lies outside the interval.
+  @inlinable
+  public static func stableRoot<S: RayScalar>(
+    direction d: Vector3<S>, inverseLengthSquared inverseA: S,
+    offset p: Vector3<S>, c: S, radiusSquared: S,
+    after tMin: S, before tMax: S
+  ) -> S? {
+    let s = p.dot(d)
+    let l = p - d * (s * inverseA)
+    let reduced = radiusSquared - l.lengthSquared
+    guard reduced >= 0 else { return nil }
+    let root = (reduced / inverseA).squareRoot()
+    let q = s >= 0 ? s + root : s - root
+    let viaQuotient = c / q
+    let viaScale = q * inverseA
+    let near = s >= 0 ? viaQuotient : viaScale
+    if near > tMin && near < tMax { return near }
+    let far = s >= 0 ? viaScale : viaQuotient
+    if far > tMin && far < tMax { return far }
+    return nil
+  }
+
+  /// The outward unit normal at the root t of `stableRoot`, from the centre's
+  /// offset from the ray's line rather than from hit point − centre, which
+  /// cancels for a small far sphere: hit − centre = ±√((r² − |l|²)/a)·d − l.
+  @inlinable
+  public static func stableNormal<S: RayScalar>(
+    direction d: Vector3<S>, inverseLengthSquared inverseA: S,
+    offset p: Vector3<S>, radiusSquared: S, t: S
+  ) -> Vector3<S> {
+    let s = p.dot(d)
+    let l = p - d * (s * inverseA)
+    let along = (Swift.max(radiusSquared - l.lengthSquared, 0) * inverseA)
+      .squareRoot()
+    let side: S = t * (1 / inverseA) < s ? -1 : 1
+    return (d * (side * along) - l).normalized()
+  }
+
+  /// The course's normal: (o + t·d − centre), normalised.
+  @inlinable
+  public static func naiveNormal<S: RayScalar>(
+    origin: Vector3<S>, direction: Vector3<S>, center: Vector3<S>, t: S
+  ) -> Vector3<S> {
+    (origin + direction * t - center).normalized()
+  }
+}

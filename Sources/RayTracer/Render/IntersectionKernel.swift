@@ -1,0 +1,196 @@
+/// A camera ray as the render loop uses it: in the kernel's frame, with the
+/// per-ray quantities every primitive test needs computed once.
+public struct CameraRay<Scalar: RayScalar>: Sendable {
+  /// The eye in the kernel's frame: the origin for camera-relative kernels.
+  public var origin: Vector3<Scalar>
+  public var direction: Vector3<Scalar>
+  /// 1 / (d·d): exactly 1 only when the rounded direction is exactly unit.
+  public var inverseLengthSquared: Scalar
+  /// 1 / d per component (±inf for a zero component), for box tests.
+  public var inverseDirection: Vector3<Scalar>
+
+  @inlinable
+  public init(origin: Vector3<Scalar>, direction: Vector3<Scalar>) {
+    self.origin = origin
+    self.direction = direction
+    inverseLengthSquared = 1 / direction.lengthSquared
+    inverseDirection = Vector3(1 / direction.x, 1 / direction.y, 1 / direction.z)
+  }
+}
+
+/// The parts of the render loop that depend on the intersection method: how
+/// spheres and planes are stored and tested. The loop is generic over it and
+/// specialised for each method and precision, so no test dispatches
+/// dynamically.
+public protocol IntersectionKernel: Sendable {
+  associatedtype Scalar: RayScalar
+  associatedtype SphereRecord: Sendable
+  associatedtype PlaneRecord: Sendable
+
+  /// The eye's position in the frame the records are stored in.
+  static func frameOrigin(eye: Vector3<Double>) -> Vector3<Scalar>
+  static func makeSphere(_ sphere: Sphere<Double>, eye: Vector3<Double>) -> SphereRecord
+  static func makePlane(_ plane: Plane<Double>, eye: Vector3<Double>) -> PlaneRecord
+  /// The sphere's centre and radius in the kernel's frame, for the BVH.
+  static func centerAndRadius(_ record: SphereRecord) -> (Vector3<Scalar>, Scalar)
+
+  /// The nearest root in (0, tMax), or nil.
+  static func intersect(
+    _ record: SphereRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
+  ) -> Scalar?
+  static func normal(
+    _ record: SphereRecord, _ ray: CameraRay<Scalar>, t: Scalar
+  ) -> Vector3<Scalar>
+  static func intersect(
+    _ record: PlaneRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
+  ) -> Scalar?
+  static func normal(_ record: PlaneRecord) -> Vector3<Scalar>
+}
+
+/// The course's method in world coordinates, recomputing o − centre and
+/// |f|² − r² for every ray in the render's precision, as the course does.
+public enum NaiveKernel<Scalar: RayScalar>: IntersectionKernel {
+  public struct SphereRecord: Sendable {
+    var center: Vector3<Scalar>
+    var radius: Scalar
+  }
+
+  public struct PlaneRecord: Sendable {
+    var normal: Vector3<Scalar>
+    var offset: Scalar
+  }
+
+  public static func frameOrigin(eye: Vector3<Double>) -> Vector3<Scalar> {
+    Vector3(eye)
+  }
+
+  public static func makeSphere(
+    _ sphere: Sphere<Double>, eye: Vector3<Double>
+  ) -> SphereRecord {
+    SphereRecord(center: Vector3(sphere.center), radius: Scalar(sphere.radius))
+  }
+
+  public static func makePlane(
+    _ plane: Plane<Double>, eye: Vector3<Double>
+  ) -> PlaneRecord {
+    PlaneRecord(normal: Vector3(plane.normal), offset: Scalar(plane.offset))
+  }
+
+  public static func centerAndRadius(_ record: SphereRecord) -> (Vector3<Scalar>, Scalar) {
+    (record.center, record.radius)
+  }
+
+  public static func intersect(
+    _ record: SphereRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
+  ) -> Scalar? {
+    SphereIntersection.naiveRoot(
+      origin: ray.origin, direction: ray.direction, center: record.center,
+      radius: record.radius, after: 0, before: tMax)
+  }
+
+  public static func normal(
+    _ record: SphereRecord, _ ray: CameraRay<Scalar>, t: Scalar
+  ) -> Vector3<Scalar> {
+    SphereIntersection.naiveNormal(
+      origin: ray.origin, direction: ray.direction, center: record.center, t: t)
+  }
+
+  public static func intersect(
+    _ record: PlaneRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
+  ) -> Scalar? {
+    let denominator = record.normal.dot(ray.direction)
+    guard denominator != 0 else { return nil }
+    let t = (record.offset - record.normal.dot(ray.origin)) / denominator
+    return t > 0 && t < tMax ? t : nil
+  }
+
+  public static func normal(_ record: PlaneRecord) -> Vector3<Scalar> {
+    record.normal
+  }
+}
+
+/// The stable method, camera-relative: the eye is the origin, each sphere is
+/// stored as p = centre − eye with c = |p|² − r² and each plane's distance
+/// from the eye as k = d − n·eye, all computed once in twice Double's
+/// precision (`CameraRelative`) and rounded once to the render's precision.
+/// Per ray that leaves only the cancellation-free quadratic of
+/// `SphereIntersection.stableRoot` and, for planes, a compensated n·d with
+/// the normal carried to twice the render's precision.
+public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
+  public struct SphereRecord: Sendable {
+    var offset: Vector3<Scalar>
+    var radiusSquared: Scalar
+    var c: Scalar
+  }
+
+  public struct PlaneRecord: Sendable {
+    var normal: Vector3<Scalar>
+    /// normal − Scalar(normal) in the scene's Double: zero for Double
+    /// renders, the rest of the normal's digits for Float ones, so that a
+    /// grazing plane keeps its orientation.
+    var normalTail: Vector3<Scalar>
+    var distance: Scalar
+  }
+
+  public static func frameOrigin(eye: Vector3<Double>) -> Vector3<Scalar> {
+    .zero
+  }
+
+  public static func makeSphere(
+    _ sphere: Sphere<Double>, eye: Vector3<Double>
+  ) -> SphereRecord {
+    let relative = CameraRelative.sphere(
+      center: sphere.center, radius: sphere.radius, eye: eye, as: Scalar.self)
+    let radius = Scalar(sphere.radius)
+    return SphereRecord(
+      offset: relative.offset, radiusSquared: radius * radius, c: relative.c)
+  }
+
+  public static func makePlane(
+    _ plane: Plane<Double>, eye: Vector3<Double>
+  ) -> PlaneRecord {
+    let normal = Vector3<Scalar>(plane.normal)
+    let tail: Vector3<Scalar> =
+      Scalar.significandBitCount < Double.significandBitCount
+      ? Vector3(plane.normal - Vector3<Double>(normal)) : .zero
+    let distance: Scalar = CameraRelative.plane(
+      normal: plane.normal, offset: plane.offset, eye: eye)
+    return PlaneRecord(normal: normal, normalTail: tail, distance: distance)
+  }
+
+  public static func centerAndRadius(_ record: SphereRecord) -> (Vector3<Scalar>, Scalar) {
+    (record.offset, record.radiusSquared.squareRoot())
+  }
+
+  public static func intersect(
+    _ record: SphereRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
+  ) -> Scalar? {
+    SphereIntersection.stableRoot(
+      direction: ray.direction, inverseLengthSquared: ray.inverseLengthSquared,
+      offset: record.offset, c: record.c, radiusSquared: record.radiusSquared,
+      after: 0, before: tMax)
+  }
+
+  public static func normal(
+    _ record: SphereRecord, _ ray: CameraRay<Scalar>, t: Scalar
+  ) -> Vector3<Scalar> {
+    SphereIntersection.stableNormal(
+      direction: ray.direction, inverseLengthSquared: ray.inverseLengthSquared,
+      offset: record.offset, radiusSquared: record.radiusSquared, t: t)
+  }
+
+  public static func intersect(
+    _ record: PlaneRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
+  ) -> Scalar? {
+    let denominator =
+      Compensated.dot(record.normal, ray.direction)
+      + record.normalTail.dot(ray.direction)
+    guard denominator != 0 else { return nil }
+    let t = record.distance / denominator
+    return t > 0 && t < tMax ? t : nil
+  }
+
+  public static func normal(_ record: PlaneRecord) -> Vector3<Scalar> {
+    record.normal
+  }
+}

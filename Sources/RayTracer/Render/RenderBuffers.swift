@@ -1,0 +1,23 @@
+/// The raw result of a render, row 0 at the top, in the render's precision.
+/// Each buffer is empty unless its output was asked for.
+public struct RenderBuffers<Scalar: RayScalar>: Sendable {
+  public let width: Int
+  public let height: Int
+  /// t along the unit ray direction; +inf where nothing was hit.
+  public var depth: [Scalar]
+  /// Unit normals; zero where nothing was hit.
+  public var normals: [Vector3<Scalar>]
+  /// Linear colour before clamping; the background where nothing was hit.
+  public var color: [RGB<Scalar>]
+
+  public init(
+    width: Int, height: Int, depth: [Scalar] = [], normals: [Vector3<Scalar>] = [],
+    color: [RGB<Scalar>] = []
+  ) {
+    self.width = width
+    self.height = height
+    self.depth = depth
+    self.normals = normals
+    self.color = color
+  }
+}

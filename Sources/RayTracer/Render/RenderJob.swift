@@ -1,0 +1,158 @@
+#if canImport(Glibc)
+import Glibc
+#elseif canImport(Darwin)
+import Darwin
+#endif
+
+/// One image file a render writes.
+public struct OutputFile: Hashable, Sendable {
+  /// Exactly one of `.depth`, `.normals`, `.shaded`.
+  public var kind: RenderOutputs
+  public var path: String
+  public var format: ImageFormat
+
+  /// Nil when the path's extension is not a known image format.
+  public init?(kind: RenderOutputs, path: String) {
+    guard let format = ImageFormat(path: path) else { return nil }
+    self.kind = kind
+    self.path = path
+    self.format = format
+  }
+}
+
+/// What a render did, for `--stats`.
+public struct RenderReport: Sendable {
+  public var settings: RenderSettings
+  public var spheres: Int
+  public var planes: Int
+  public var usesHierarchy: Bool
+  public var compileSeconds: Double
+  public var renderSeconds: Double
+  public var writeSeconds: Double
+  public var rays: Int { settings.width * settings.height }
+  public var megaraysPerSecond: Double { Double(rays) / renderSeconds / 1e6 }
+  /// The depth range a depth image used, if one was written.
+  public var depthRange: ClosedRange<Double>?
+
+  /// What the requested outputs did not need, and so was not computed.
+  public var leftOut: [String] {
+    var parts: [String] = []
+    let outputs = settings.outputs
+    if !outputs.contains(.shaded) { parts.append("shading (lights, materials)") }
+    if !outputs.needsNormals { parts.append("normals") }
+    if !outputs.contains(.depth) { parts.append("depth buffer") }
+    if planes == 0 { parts.append("plane tests (no planes)") }
+    return parts
+  }
+}
+
+/// A whole render: compile the scene for the chosen precision and method,
+/// render the requested outputs, and write each file whole or not at all.
+public enum RenderJob {
+  public static func run(
+    scene: Scene, settings requested: RenderSettings, files: [OutputFile],
+    depthRange: ClosedRange<Double>? = nil, png: PNGOptions = .default,
+    progress: (@Sendable (Int) -> Void)? = nil
+  ) throws -> RenderReport {
+    var settings = requested
+    settings.outputs = files.reduce(into: []) { $0.formUnion($1.kind) }
+    switch (settings.precision, settings.method) {
+    case (.float, .naive):
+      return try run(NaiveKernel<Float>.self, scene, settings, files, depthRange, png, progress)
+    case (.float, .stable):
+      return try run(StableKernel<Float>.self, scene, settings, files, depthRange, png, progress)
+    case (.double, .naive):
+      return try run(NaiveKernel<Double>.self, scene, settings, files, depthRange, png, progress)
+    case (.double, .stable):
+      return try run(StableKernel<Double>.self, scene, settings, files, depthRange, png, progress)
+    }
+  }
+
+  private static func run<Kernel: IntersectionKernel>(
+    _ kernel: Kernel.Type, _ scene: Scene, _ settings: RenderSettings,
+    _ files: [OutputFile], _ depthRange: ClosedRange<Double>?, _ png: PNGOptions,
+    _ progress: (@Sendable (Int) -> Void)?
+  ) throws -> RenderReport {
+    var clock = Stopwatch()
+    let compiled = CompiledScene<Kernel>(
+      scene,
+      hierarchyThreshold: settings.hierarchyThreshold
+        ?? BoundingVolumeHierarchy<Kernel.Scalar>.defaultThreshold)
+    let compileSeconds = clock.lap()
+    let buffers = Renderer.render(compiled, settings: settings, progress: progress)
+    let renderSeconds = clock.lap()
+    var usedRange: ClosedRange<Double>?
+    for file in files {
+      let bytes: [UInt8]
+      switch (file.kind, file.format.isEightBit) {
+      case (.depth, true):
+        usedRange = settings.style.depthRange(buffers.depth, given: depthRange)
+        bytes = encode(settings.style.depthImage(buffers, range: depthRange), file.format, png)
+      case (.normals, true):
+        bytes = encode(settings.style.normalImage(buffers), file.format, png)
+      case (.shaded, true):
+        bytes = encode(settings.style.colorImage(buffers), file.format, png)
+      case (let kind, false):
+        bytes = encodeRaw(rawImage(kind, buffers), file.format)
+      }
+      try AtomicFile.write(bytes, to: file.path)
+    }
+    return RenderReport(
+      settings: settings, spheres: compiled.sphereCount, planes: compiled.planeCount,
+      usesHierarchy: compiled.usesHierarchy, compileSeconds: compileSeconds,
+      renderSeconds: renderSeconds, writeSeconds: clock.lap(), depthRange: usedRange)
+  }
+
+  static func rawImage<S: RayScalar>(
+    _ kind: RenderOutputs, _ buffers: RenderBuffers<S>
+  ) -> RawImage<S> {
+    let (width, height) = (buffers.width, buffers.height)
+    switch kind {
+    case .depth:
+      return RawImage(width: width, height: height, channels: 1, values: buffers.depth)
+    case .normals:
+      return RawImage(
+        width: width, height: height, channels: 3,
+        values: buffers.normals.flatMap { [$0.x, $0.y, $0.z] })
+    default:
+      return RawImage(
+        width: width, height: height, channels: 3,
+        values: buffers.color.flatMap { [$0.x, $0.y, $0.z] })
+    }
+  }
+
+  private static func encode(_ image: Image8, _ format: ImageFormat, _ png: PNGOptions) -> [UInt8] {
+    format == .png ? PNGEncoder.encode(image, options: png) : PPMEncoder.encode(image)
+  }
+
+  /// PFM is 32-bit by definition; NPY keeps the render's precision.
+  private static func encodeRaw<S: RayScalar>(_ image: RawImage<S>, _ format: ImageFormat) -> [UInt8] {
+    if format == .pfm {
+      return PFMEncoder.encode(
+        RawImage(
+          width: image.width, height: image.height, channels: image.channels,
+          values: image.values.map { Float($0) }))
+    }
+    return NPYEncoder.encode(image)
+  }
+}
+
+/// Wall-clock intervals from a monotonic clock.
+public struct Stopwatch {
+  private var last = Stopwatch.now()
+
+  public init() {}
+
+  /// Seconds since the previous lap (or since creation), and starts a new one.
+  public mutating func lap() -> Double {
+    let now = Stopwatch.now()
+    defer { last = now }
+    return now - last
+  }
+
+  static func now() -> Double {
+    var time = timespec()
+    clock_gettime(CLOCK_MONOTONIC, &time)
+    return Double(time.tv_sec) + Double(time.tv_nsec) * 1e-9
+  }
+}

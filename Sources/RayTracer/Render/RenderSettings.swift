@@ -1,0 +1,49 @@
+/// The images a render is asked for. Anything not asked for is not computed:
+/// no shading without `shaded`, no normals unless `normals` or `shaded`, no
+/// depth buffer without `depth`.
+public struct RenderOutputs: OptionSet, Hashable, Sendable {
+  public let rawValue: Int
+  public init(rawValue: Int) { self.rawValue = rawValue }
+
+  public static let depth = RenderOutputs(rawValue: 1)
+  public static let normals = RenderOutputs(rawValue: 2)
+  public static let shaded = RenderOutputs(rawValue: 4)
+
+  /// Normals are computed for the normals image and for shading.
+  public var needsNormals: Bool { !isDisjoint(with: [.normals, .shaded]) }
+
+  public var names: [String] {
+    [(RenderOutputs.depth, "depth"), (.normals, "normals"), (.shaded, "shaded")]
+      .filter { contains($0.0) }.map(\.1)
+  }
+}
+
+/// Everything about a render but the scene.
+public struct RenderSettings: Sendable {
+  public var width: Int
+  public var height: Int
+  public var outputs: RenderOutputs
+  public var style: ImageStyle
+  public var method: IntersectionMethod
+  public var precision: Precision
+  /// Worker threads; the image is the same, bit for bit, for any count.
+  public var threads: Int
+  /// Spheres from which a BVH is built.
+  public var hierarchyThreshold: Int?
+
+  public init(
+    width: Int, height: Int, outputs: RenderOutputs,
+    style: ImageStyle = .course, method: IntersectionMethod = .stable,
+    precision: Precision = .double, threads: Int = 1,
+    hierarchyThreshold: Int? = nil
+  ) {
+    self.width = width
+    self.height = height
+    self.outputs = outputs
+    self.style = style
+    self.method = method
+    self.precision = precision
+    self.threads = threads
+    self.hierarchyThreshold = hierarchyThreshold
+  }
+}

@@ -1,0 +1,146 @@
+#if canImport(Glibc)
+import Glibc
+#elseif canImport(Darwin)
+import Darwin
+#endif
+import Dispatch
+import Synchronization
+
+/// The per-pixel loop: one camera ray per pixel, nearest hit, then only the
+/// quantities the requested outputs need.
+public enum Renderer {
+  /// Renders `scene` into the buffers `settings.outputs` asks for.
+  ///
+  /// Rows are handed out to `settings.threads` workers in small batches; every
+  /// pixel is computed by the same code whatever the thread count, so the
+  /// result is identical bit for bit.
+  public static func render<Kernel: IntersectionKernel>(
+    _ scene: CompiledScene<Kernel>, settings: RenderSettings,
+    progress: (@Sendable (Int) -> Void)? = nil
+  ) -> RenderBuffers<Kernel.Scalar> {
+    render(
+      scene, settings: settings, rays: Kernel.Scalar.self, progress: progress)
+  }
+
+  /// Renders with camera rays generated in precision `RayPrecision` and then
+  /// converted exactly to the kernel's wider type: the reference path, which
+  /// intersects the very rays a Float or Double render traced, in Float80.
+  public static func render<Kernel: IntersectionKernel, RayPrecision: RayScalar>(
+    _ scene: CompiledScene<Kernel>, settings: RenderSettings,
+    rays: RayPrecision.Type, progress: (@Sendable (Int) -> Void)? = nil
+  ) -> RenderBuffers<Kernel.Scalar> {
+    typealias S = Kernel.Scalar
+    let width = settings.width
+    let height = settings.height
+    let count = width * height
+    let outputs = settings.outputs
+    let camera = PerspectiveCamera<RayPrecision>(scene.camera)
+    var depth = outputs.contains(.depth) ? [S](repeating: 0, count: count) : []
+    var normals =
+      outputs.contains(.normals) ? [Vector3<S>](repeating: .zero, count: count) : []
+    var color =
+      outputs.contains(.shaded) ? [RGB<S>](repeating: .zero, count: count) : []
+    depth.withUnsafeMutableBufferPointer { depth in
+      normals.withUnsafeMutableBufferPointer { normals in
+        color.withUnsafeMutableBufferPointer { color in
+          let targets = Targets(depth: depth, normals: normals, color: color)
+          forEachRowBatch(
+            rows: height, threads: settings.threads, progress: progress
+          ) { rows in
+            for row in rows {
+              renderRow(row, scene, camera, settings, targets)
+            }
+          }
+        }
+      }
+    }
+    return RenderBuffers(
+      width: width, height: height, depth: depth, normals: normals, color: color)
+  }
+
+  /// Disjoint rows of these buffers are written by different threads.
+  private struct Targets<S: RayScalar>: @unchecked Sendable {
+    let depth: UnsafeMutableBufferPointer<S>
+    let normals: UnsafeMutableBufferPointer<Vector3<S>>
+    let color: UnsafeMutableBufferPointer<RGB<S>>
+  }
+
+  private static func renderRow<Kernel: IntersectionKernel, R: RayScalar>(
+    _ row: Int, _ scene: CompiledScene<Kernel>, _ camera: PerspectiveCamera<R>,
+    _ settings: RenderSettings, _ targets: Targets<Kernel.Scalar>
+  ) {
+    typealias S = Kernel.Scalar
+    let width = settings.width
+    let style = settings.style
+    let aspect = R(settings.height) / R(width)
+    let y: R = style.screenY(row: row, height: settings.height)
+    let wantsDepth = targets.depth.count > 0
+    let wantsNormals = targets.normals.count > 0
+    let wantsColor = targets.color.count > 0
+    let attenuate = style == .mit
+    for column in 0..<width {
+      let x: R = style.screenX(column: column, width: width)
+      let direction = Vector3<S>(camera.rayDirection(x: x, y: y, aspect: aspect))
+      let ray = CameraRay(origin: scene.rayOrigin, direction: direction)
+      let pixel = row * width + column
+      guard let hit = scene.nearest(ray) else {
+        if wantsDepth { targets.depth[pixel] = .infinity }
+        if wantsNormals { targets.normals[pixel] = .zero }
+        if wantsColor { targets.color[pixel] = scene.background }
+        continue
+      }
+      if wantsDepth { targets.depth[pixel] = hit.t }
+      guard wantsNormals || wantsColor else { continue }
+      let normal = scene.normal(of: hit.what, ray, t: hit.t)
+      if wantsNormals { targets.normals[pixel] = normal }
+      if wantsColor {
+        let material = scene.material(of: hit.what)
+        targets.color[pixel] = material.shade(
+          point: scene.eye + direction * hit.t, normal: normal,
+          viewDirection: direction, ambient: scene.ambient,
+          lights: scene.lights, attenuate: attenuate)
+      }
+    }
+  }
+
+  /// Rows per batch: small enough to balance two threads on a 100-row image,
+  /// large enough that taking a batch costs nothing next to rendering it.
+  static let rowsPerBatch = 4
+
+  /// Runs `body` over all rows in batches on `threads` workers (the calling
+  /// thread among them), reporting finished rows to `progress`.
+  static func forEachRowBatch(
+    rows: Int, threads: Int, progress: (@Sendable (Int) -> Void)?,
+    _ body: @Sendable (Range<Int>) -> Void
+  ) {
+    let batches = (rows + rowsPerBatch - 1) / rowsPerBatch
+    let next = Atomic<Int>(0)
+    let done = Atomic<Int>(0)
+    let workers = max(1, min(threads, batches))
+    withoutActuallyEscaping(body) { body in
+      let work: @Sendable () -> Void = {
+        while true {
+          let batch = next.wrappingAdd(1, ordering: .relaxed).oldValue
+          guard batch < batches else { return }
+          let start = batch * rowsPerBatch
+          let end = min(rows, start + rowsPerBatch)
+          body(start..<end)
+          let finished = done.wrappingAdd(end - start, ordering: .relaxed).newValue
+          progress?(finished)
+        }
+      }
+      if workers == 1 {
+        work()
+      } else {
+        DispatchQueue.concurrentPerform(iterations: workers) { _ in work() }
+      }
+    }
+  }
+}
+
+extension Renderer {
+  /// The number of processors online, the default thread count.
+  public static var availableCores: Int {
+    max(1, Int(sysconf(Int32(_SC_NPROCESSORS_ONLN))))
+  }
+}

@@ -1,0 +1,650 @@
+#if canImport(Glibc)
+import Glibc
+#elseif canImport(Darwin)
+import Darwin
+#endif
+
+/// Reads the course's scene format:
+///
+///     PerspectiveCamera { center x y z  direction x y z  up x y z  angle deg }
+///     Lights { numLights n  PointLight { position … color … [falloff f] }
+///              DirectionalLight { direction … color … } }
+///     Background { color r g b  ambientLight r g b }
+///     Materials { numMaterials n  Material { diffuseColor … [specularColor …]
+///                 [shininess s] }  PhongMaterial { … } }
+///     Group { numObjects n  MaterialIndex i  Sphere { center … radius r }
+///             Plane { normal … offset d }  Group { … } }
+///
+/// Only the camera and the group are required. Fields inside a block may come
+/// in any order, each once. Every problem is a `SceneError` at the offending
+/// token; nothing traps, whatever the input.
+public struct SceneParser {
+  /// Deeper nesting than this is refused rather than risking the stack.
+  public static let maximumGroupDepth = 200
+
+  /// Blocks of the course's later assignments: named in the error, so a user
+  /// knows the scene is valid but beyond this renderer.
+  static let unsupportedBlocks: Set<String> = [
+    "Transform", "TriangleMesh", "Triangle", "OrthographicCamera", "cubeMap",
+    "texture", "bump", "CheckerBoard", "Noise", "Marble", "Wood",
+    "PerlinNoise", "Checkerboard", "Box", "Cylinder", "Cone",
+  ]
+
+  private var tokenizer: SceneTokenizer
+  private let file: String
+  private var pendingMaterialChecks: [(index: Int, token: SceneToken)] = []
+
+  /// Parses `text`; `file` names it in messages.
+  public static func parse(_ text: String, file: String) throws(SceneError) -> Scene {
+    var parser = SceneParser(bytes: Array(text.utf8), file: file)
+    return try parser.parseScene()
+  }
+
+  /// Reads and parses the file at `path`.
+  public static func parse(contentsOf path: String) throws(SceneError) -> Scene {
+    let bytes: [UInt8]
+    do {
+      bytes = try readFile(path)
+    } catch {
+      throw SceneError(file: path, line: 0, column: 0, message: error.reason)
+    }
+    var parser = SceneParser(bytes: bytes, file: path)
+    return try parser.parseScene()
+  }
+
+  init(bytes: [UInt8], file: String) {
+    tokenizer = SceneTokenizer(bytes: bytes)
+    self.file = file
+  }
+
+  // MARK: - Blocks
+
+  private mutating func parseScene() throws(SceneError) -> Scene {
+    var camera: PerspectiveCamera<Double>?
+    var lights: [Light<Double>]?
+    var background: (color: RGB<Double>?, ambient: RGB<Double>?)?
+    var materials: [Material<Double>]?
+    var root: Group<Double>?
+    var first: SceneToken?
+    while true {
+      let token = tokenizer.next()
+      if first == nil { first = token }
+      switch token.kind {
+      case .end:
+        guard let camera else {
+          throw error(at: first ?? token, "the scene has no PerspectiveCamera")
+        }
+        guard let root else {
+          throw error(at: first ?? token, "the scene has no Group")
+        }
+        let materialList = materials ?? []
+        let available = max(materialList.count, 1)
+        for check in pendingMaterialChecks where check.index >= available {
+          throw error(
+            at: check.token,
+            "MaterialIndex \(check.index) is out of range: the scene has "
+              + "\(materialList.isEmpty ? "no materials (only the default, 0)" : "\(materialList.count) material\(materialList.count == 1 ? "" : "s") (0 to \(materialList.count - 1))")")
+        }
+        return Scene(
+          camera: camera, lights: lights ?? [],
+          background: background?.color ?? .zero,
+          ambient: background?.ambient, materials: materialList, root: root)
+      case .open, .close:
+        throw error(at: token, "expected a block name, found '\(text(token))'")
+      case .word:
+        let name = text(token)
+        switch name {
+        case "PerspectiveCamera":
+          try refuseRepeat(camera != nil, token)
+          camera = try parseCamera(token)
+        case "Lights":
+          try refuseRepeat(lights != nil, token)
+          lights = try parseLights()
+        case "Background":
+          try refuseRepeat(background != nil, token)
+          background = try parseBackground()
+        case "Materials":
+          try refuseRepeat(materials != nil, token)
+          materials = try parseMaterials()
+        case "Group":
+          try refuseRepeat(root != nil, token)
+          root = try parseGroup(depth: 1, material: 0)
+        default:
+          throw unexpected(
+            token, expected: "a block name",
+            choices: [
+              "PerspectiveCamera", "Lights", "Background", "Materials", "Group",
+            ])
+        }
+      }
+    }
+  }
+
+  private func refuseRepeat(_ seen: Bool, _ token: SceneToken) throws(SceneError) {
+    if seen {
+      throw error(at: token, "a second '\(text(token))' block; a scene has one")
+    }
+  }
+
+  private mutating func parseCamera(
+    _ start: SceneToken
+  ) throws(SceneError) -> PerspectiveCamera<Double> {
+    var center: Vector3<Double>?
+    var direction: (Vector3<Double>, SceneToken)?
+    var up: (Vector3<Double>, SceneToken)?
+    var angle: (Double, SceneToken)?
+    let close = try parseFields(
+      "PerspectiveCamera", ["center", "direction", "up", "angle"]
+    ) { (parser: inout SceneParser, field: String) throws(SceneError) in
+      switch field {
+      case "center": center = try parser.vector()
+      case "direction":
+        let token = parser.peekStart()
+        direction = (try parser.vector(), token)
+      case "up":
+        let token = parser.peekStart()
+        up = (try parser.vector(), token)
+      default:
+        let token = parser.peekStart()
+        angle = (try parser.number(), token)
+      }
+    }
+    guard let center, let direction, let up, let angle else {
+      throw missing(
+        "PerspectiveCamera",
+        [
+          ("center", center != nil), ("direction", direction != nil),
+          ("up", up != nil), ("angle", angle != nil),
+        ], close)
+    }
+    guard angle.0 > 0 && angle.0 < 180 else {
+      throw error(
+        at: angle.1,
+        "the camera's angle must be between 0 and 180 degrees, found \(text(angle.1))"
+      )
+    }
+    guard direction.0.maxMagnitude > 0 else {
+      throw error(at: direction.1, "the camera's direction must not be zero")
+    }
+    guard
+      let camera = PerspectiveCamera(
+        center: center, direction: direction.0, up: up.0, angle: angle.0)
+    else {
+      throw error(
+        at: up.1, "the camera's up vector must not be zero or parallel to its direction")
+    }
+    return camera
+  }
+
+  private mutating func parseLights() throws(SceneError) -> [Light<Double>] {
+    try expect(.open, "'{' after Lights")
+    let declared = try count("numLights", in: "Lights")
+    var lights: [Light<Double>] = []
+    while true {
+      let token = tokenizer.next()
+      if token.kind == .close {
+        try checkCount(lights.count, declared, "Lights", "numLights", "light", token)
+        return lights
+      }
+      guard token.kind == .word else { throw unexpectedEnd(token, in: "Lights") }
+      let name = text(token)
+      if name == "PointLight" || name == "DirectionalLight" {
+        if lights.count == declared.value {
+          throw tooMany(declared, "Lights", "numLights", "light", token)
+        }
+        lights.append(
+          name == "PointLight" ? try parsePointLight() : try parseDirectionalLight())
+      } else {
+        throw unexpected(
+          token, expected: "a light", choices: ["PointLight", "DirectionalLight"])
+      }
+    }
+  }
+
+  private mutating func parsePointLight() throws(SceneError) -> Light<Double> {
+    var position: Vector3<Double>?
+    var color: RGB<Double>?
+    var falloff: Double?
+    let close = try parseFields(
+      "PointLight", ["position", "color", "falloff"]
+    ) { (parser: inout SceneParser, field: String) throws(SceneError) in
+      switch field {
+      case "position": position = try parser.vector()
+      case "color": color = try parser.color(field)
+      default: falloff = try parser.positive(field)
+      }
+    }
+    guard let position, let color else {
+      throw missing(
+        "PointLight", [("position", position != nil), ("color", color != nil)],
+        close)
+    }
+    return .point(position: position, color: color, falloff: falloff)
+  }
+
+  private mutating func parseDirectionalLight() throws(SceneError) -> Light<Double> {
+    var direction: Vector3<Double>?
+    var color: RGB<Double>?
+    let close = try parseFields(
+      "DirectionalLight", ["direction", "color"]
+    ) { (parser: inout SceneParser, field: String) throws(SceneError) in
+      switch field {
+      case "direction": direction = try parser.nonZeroVector(field)
+      default: color = try parser.color(field)
+      }
+    }
+    guard let direction, let color else {
+      throw missing(
+        "DirectionalLight", [("direction", direction != nil), ("color", color != nil)],
+        close)
+    }
+    return .directional(direction: direction.normalized(), color: color)
+  }
+
+  private mutating func parseBackground() throws(SceneError) -> (
+    color: RGB<Double>?, ambient: RGB<Double>?
+  ) {
+    var color: RGB<Double>?
+    var ambient: RGB<Double>?
+    _ = try parseFields(
+      "Background", ["color", "ambientLight"]
+    ) { (parser: inout SceneParser, field: String) throws(SceneError) in
+      switch field {
+      case "color": color = try parser.color(field)
+      default: ambient = try parser.color(field)
+      }
+    }
+    return (color, ambient)
+  }
+
+  private mutating func parseMaterials() throws(SceneError) -> [Material<Double>] {
+    try expect(.open, "'{' after Materials")
+    let declared = try count("numMaterials", in: "Materials")
+    var materials: [Material<Double>] = []
+    while true {
+      let token = tokenizer.next()
+      if token.kind == .close {
+        try checkCount(
+          materials.count, declared, "Materials", "numMaterials", "material", token)
+        return materials
+      }
+      guard token.kind == .word else { throw unexpectedEnd(token, in: "Materials") }
+      let name = text(token)
+      guard name == "Material" || name == "PhongMaterial" else {
+        throw unexpected(
+          token, expected: "a material", choices: ["Material", "PhongMaterial"])
+      }
+      if materials.count == declared.value {
+        throw tooMany(declared, "Materials", "numMaterials", "material", token)
+      }
+      materials.append(try parseMaterial(name))
+    }
+  }
+
+  private mutating func parseMaterial(_ name: String) throws(SceneError) -> Material<Double> {
+    var diffuse: RGB<Double>?
+    var specular: RGB<Double>?
+    var shininess: Double?
+    let close = try parseFields(
+      name, ["diffuseColor", "specularColor", "shininess"]
+    ) { (parser: inout SceneParser, field: String) throws(SceneError) in
+      switch field {
+      case "diffuseColor": diffuse = try parser.color(field)
+      case "specularColor": specular = try parser.color(field)
+      default: shininess = try parser.nonNegative(field)
+      }
+    }
+    guard let diffuse else {
+      throw missing(name, [("diffuseColor", false)], close)
+    }
+    return Material(
+      diffuse: diffuse, specular: specular ?? .zero, shininess: shininess ?? 0)
+  }
+
+  /// A group's objects take the material set by the last `MaterialIndex`
+  /// before them; a nested group starts with its parent's current material.
+  private mutating func parseGroup(
+    depth: Int, material inherited: Int
+  ) throws(SceneError) -> Group<Double> {
+    try expect(.open, "'{' after Group")
+    let declared = try count("numObjects", in: "Group")
+    var material = inherited
+    var objects: [SceneObject<Double>] = []
+    objects.reserveCapacity(min(declared.value, 1 << 20))
+    while true {
+      let token = tokenizer.next()
+      switch token.kind {
+      case .close:
+        try checkCount(objects.count, declared, "Group", "numObjects", "object", token)
+        return Group(objects)
+      case .end, .open:
+        throw unexpectedEnd(token, in: "Group")
+      case .word:
+        break
+      }
+      if tokenizer.matches(token, "MaterialIndex") {
+        let valueToken = peekStart()
+        let value = try wholeNumber("MaterialIndex")
+        pendingMaterialChecks.append((value, valueToken))
+        material = value
+        continue
+      }
+      let isSphere = tokenizer.matches(token, "Sphere")
+      let isPlane = !isSphere && tokenizer.matches(token, "Plane")
+      let isGroup = !isSphere && !isPlane && tokenizer.matches(token, "Group")
+      guard isSphere || isPlane || isGroup else {
+        throw unexpected(
+          token, expected: "an object",
+          choices: ["Sphere", "Plane", "Group", "MaterialIndex"])
+      }
+      if objects.count == declared.value {
+        throw tooMany(declared, "Group", "numObjects", "object", token)
+      }
+      if isSphere {
+        objects.append(.sphere(try parseSphere(material: material)))
+      } else if isPlane {
+        objects.append(.plane(try parsePlane(material: material)))
+      } else {
+        guard depth < Self.maximumGroupDepth else {
+          throw error(
+            at: token,
+            "Groups are nested more than \(Self.maximumGroupDepth) deep")
+        }
+        objects.append(.group(try parseGroup(depth: depth + 1, material: material)))
+      }
+    }
+  }
+
+  /// The hot path of large scenes: keywords are compared as bytes, and the
+  /// usual `center x y z radius r` order needs no dictionary or String.
+  private mutating func parseSphere(material: Int) throws(SceneError) -> Sphere<Double> {
+    var center: Vector3<Double>?
+    var radius: Double?
+    let close = try parseFields(
+      "Sphere", ["center", "radius"]
+    ) { (parser: inout SceneParser, field: String) throws(SceneError) in
+      if field == "center" {
+        center = try parser.vector()
+      } else {
+        radius = try parser.positive(field)
+      }
+    }
+    guard let center, let radius else {
+      throw missing("Sphere", [("center", center != nil), ("radius", radius != nil)], close)
+    }
+    return Sphere(center: center, radius: radius, materialIndex: material)
+  }
+
+  private mutating func parsePlane(material: Int) throws(SceneError) -> Plane<Double> {
+    var normal: Vector3<Double>?
+    var offset: Double?
+    let close = try parseFields(
+      "Plane", ["normal", "offset"]
+    ) { (parser: inout SceneParser, field: String) throws(SceneError) in
+      if field == "normal" {
+        normal = try parser.nonZeroVector(field)
+      } else {
+        offset = try parser.number()
+      }
+    }
+    guard let normal, let offset else {
+      throw missing("Plane", [("normal", normal != nil), ("offset", offset != nil)], close)
+    }
+    return Plane(normal: normal, offset: offset, materialIndex: material)
+  }
+
+  // MARK: - Fields and values
+
+  /// Reads `{ field value … }`, each of `fields` at most once, calling `read`
+  /// to parse each value; returns the closing brace, for messages about
+  /// missing fields.
+  private mutating func parseFields(
+    _ block: String, _ fields: [StaticString],
+    read: (inout SceneParser, String) throws(SceneError) -> Void
+  ) throws(SceneError) -> SceneToken {
+    try expect(.open, "'{' after \(block)")
+    var seen = [Bool](repeating: false, count: fields.count)
+    while true {
+      let token = tokenizer.next()
+      switch token.kind {
+      case .close:
+        return token
+      case .end, .open:
+        throw unexpectedEnd(token, in: block)
+      case .word:
+        guard let index = fields.firstIndex(where: { tokenizer.matches(token, $0) })
+        else {
+          throw unexpected(
+            token, expected: "a field of \(block)",
+            choices: fields.map { "\($0)" })
+        }
+        guard !seen[index] else {
+          throw error(at: token, "'\(fields[index])' is given twice in \(block)")
+        }
+        seen[index] = true
+        try read(&self, "\(fields[index])")
+      }
+    }
+  }
+
+  /// The position of the next token, without consuming it: a copy of the
+  /// tokenizer is cheap, since its bytes are shared.
+  private func peekStart() -> SceneToken {
+    var copy = tokenizer
+    return copy.next()
+  }
+
+  private mutating func number() throws(SceneError) -> Double {
+    let token = tokenizer.next()
+    guard let value = tokenizer.number(token) else {
+      throw error(at: token, "expected a number, found '\(text(token))'")
+    }
+    guard value.isFinite else {
+      throw error(at: token, "expected a finite number, found '\(text(token))'")
+    }
+    return value
+  }
+
+  private mutating func vector() throws(SceneError) -> Vector3<Double> {
+    let x = try number()
+    let y = try number()
+    let z = try number()
+    return Vector3(x, y, z)
+  }
+
+  private mutating func nonZeroVector(_ field: String) throws(SceneError) -> Vector3<Double> {
+    let start = peekStart()
+    let value = try vector()
+    guard value.maxMagnitude > 0 else {
+      throw error(at: start, "'\(field)' must not be the zero vector")
+    }
+    return value
+  }
+
+  private mutating func color(_ field: String) throws(SceneError) -> RGB<Double> {
+    let start = peekStart()
+    let value = try vector()
+    guard value.x >= 0 && value.y >= 0 && value.z >= 0 else {
+      throw error(at: start, "'\(field)' components must not be negative")
+    }
+    return value
+  }
+
+  private mutating func positive(_ field: String) throws(SceneError) -> Double {
+    let token = peekStart()
+    let value = try number()
+    guard value > 0 else {
+      throw error(at: token, "'\(field)' must be positive, found \(text(token))")
+    }
+    return value
+  }
+
+  private mutating func nonNegative(_ field: String) throws(SceneError) -> Double {
+    let token = peekStart()
+    let value = try number()
+    guard value >= 0 else {
+      throw error(at: token, "'\(field)' must not be negative, found \(text(token))")
+    }
+    return value
+  }
+
+  private mutating func wholeNumber(_ field: String) throws(SceneError) -> Int {
+    let token = peekStart()
+    let value = try number()
+    guard value >= 0, value == value.rounded(), value < 1e15 else {
+      throw error(
+        at: token, "'\(field)' must be a whole number ≥ 0, found \(text(token))")
+    }
+    return Int(value)
+  }
+
+  // MARK: - Counts
+
+  private mutating func count(
+    _ field: StaticString, in block: String
+  ) throws(SceneError) -> (value: Int, token: SceneToken) {
+    let token = tokenizer.next()
+    guard tokenizer.matches(token, field) else {
+      throw error(
+        at: token, "expected '\(field)' at the start of \(block), found '\(text(token))'")
+    }
+    let valueToken = peekStart()
+    return (try wholeNumber("\(field)"), valueToken)
+  }
+
+  private func checkCount(
+    _ found: Int, _ declared: (value: Int, token: SceneToken), _ block: String,
+    _ field: String, _ noun: String, _ close: SceneToken
+  ) throws(SceneError) {
+    guard found == declared.value else {
+      throw error(
+        at: close,
+        "\(block) has \(found) \(noun)\(found == 1 ? "" : "s") but \(field) "
+          + "(line \(declared.token.line)) says \(declared.value)")
+    }
+  }
+
+  private func tooMany(
+    _ declared: (value: Int, token: SceneToken), _ block: String,
+    _ field: String, _ noun: String, _ token: SceneToken
+  ) -> SceneError {
+    error(
+      at: token,
+      "\(block) has more \(noun)s than \(field) (line \(declared.token.line)) "
+        + "says (\(declared.value))")
+  }
+
+  // MARK: - Messages
+
+  private func text(_ token: SceneToken) -> String {
+    tokenizer.text(of: token)
+  }
+
+  private func error(at token: SceneToken, _ message: String) -> SceneError {
+    SceneError(file: file, line: token.line, column: token.column, message: message)
+  }
+
+  private mutating func expect(
+    _ kind: SceneToken.Kind, _ what: String
+  ) throws(SceneError) {
+    let token = tokenizer.next()
+    guard token.kind == kind else {
+      throw error(
+        at: token,
+        "expected \(what), found \(token.kind == .end ? "end of file" : "'\(text(token))'")")
+    }
+  }
+
+  private func unexpectedEnd(_ token: SceneToken, in block: String) -> SceneError {
+    token.kind == .end
+      ? error(at: token, "unexpected end of file: \(block) is missing its '}'")
+      : error(at: token, "unexpected '\(text(token))' in \(block)")
+  }
+
+  /// Names an unsupported block as such, otherwise suggests the nearest of
+  /// `choices`.
+  private func unexpected(
+    _ token: SceneToken, expected: String, choices: [String]
+  ) -> SceneError {
+    let word = text(token)
+    if Self.unsupportedBlocks.contains(word) {
+      return error(
+        at: token,
+        "'\(word)' is not supported: raytrace renders spheres and planes with a "
+          + "PerspectiveCamera")
+    }
+    if tokenizer.number(token) != nil {
+      return error(at: token, "expected \(expected), found the number \(word)")
+    }
+    var message = "expected \(expected), found '\(word)'"
+    if let suggestion = nearest(to: word, in: choices) {
+      message += "; did you mean '\(suggestion)'?"
+    } else {
+      message += " (expected one of \(choices.map { "'\($0)'" }.joined(separator: ", ")))"
+    }
+    return error(at: token, message)
+  }
+
+  private func missing(
+    _ block: String, _ fields: [(String, Bool)], _ close: SceneToken
+  ) -> SceneError {
+    let absent = fields.filter { !$0.1 }.map { "'\($0.0)'" }
+    return error(
+      at: close, "\(block) is missing \(absent.joined(separator: " and "))")
+  }
+}
+
+/// The choice within edit distance ⌈length/3⌉ of `word`, case ignored, if any.
+func nearest(to word: String, in choices: [String]) -> String? {
+  let lowered = Array(word.lowercased().utf8)
+  var best: (choice: String, distance: Int)?
+  for choice in choices {
+    let distance = editDistance(lowered, Array(choice.lowercased().utf8))
+    if distance <= max(1, (choice.utf8.count + 2) / 3),
+      distance < (best?.distance ?? .max)
+    {
+      best = (choice, distance)
+    }
+  }
+  return best?.choice
+}
+
+/// Levenshtein distance, two rows at a time.
+func editDistance(_ a: [UInt8], _ b: [UInt8]) -> Int {
+  if a.isEmpty { return b.count }
+  var previous = Array(0...b.count)
+  var current = previous
+  for i in 1...a.count {
+    current[0] = i
+    for j in stride(from: 1, through: b.count, by: 1) {
+      let substitution = previous[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)
+      current[j] = min(substitution, previous[j] + 1, current[j - 1] + 1)
+    }
+    swap(&previous, &current)
+  }
+  return previous[b.count]
+}
+
+struct FileReadError: Error {
+  var reason: String
+}
+
+/// The whole file in one read; errors carry the system's reason.
+func readFile(_ path: String) throws(FileReadError) -> [UInt8] {
+  guard let handle = fopen(path, "rb") else {
+    throw FileReadError(reason: "cannot open the file: \(String(cString: strerror(errno)))")
+  }
+  defer { fclose(handle) }
+  var bytes: [UInt8] = []
+  var chunk = [UInt8](repeating: 0, count: 1 << 20)
+  while true {
+    let read = chunk.withUnsafeMutableBytes { fread($0.baseAddress, 1, $0.count, handle) }
+    if read > 0 { bytes.append(contentsOf: chunk[0..<read]) }
+    if read < chunk.count {
+      if ferror(handle) != 0 {
+        throw FileReadError(reason: "cannot read the file: \(String(cString: strerror(errno)))")
+      }
+      return bytes
+    }
+  }
+}

@@ -1,0 +1,112 @@
+/// One token of a scene file: a brace or a run of other non-blank bytes.
+struct SceneToken {
+  enum Kind { case word, open, close, end }
+  var kind: Kind
+  var start: Int
+  var end: Int
+  var line: Int
+  var column: Int
+}
+
+/// Splits a scene file into tokens lazily, so that a million-sphere file is
+/// never held as an array of tokens.
+///
+/// Tokens are separated by white space; `{` and `}` are tokens of their own
+/// even when they touch a word; `#` starts a comment to the end of the line.
+struct SceneTokenizer {
+  let bytes: [UInt8]
+  private var index = 0
+  private var line = 1
+  private var lineStart = 0
+
+  init(bytes: [UInt8]) {
+    self.bytes = bytes
+  }
+
+  mutating func next() -> SceneToken {
+    bytes.withUnsafeBufferPointer { buffer in
+      skipBlanksAndComments(buffer)
+      let start = index
+      let column = start - lineStart + 1
+      guard start < buffer.count else {
+        return SceneToken(
+          kind: .end, start: start, end: start, line: line, column: column)
+      }
+      switch buffer[start] {
+      case UInt8(ascii: "{"):
+        index += 1
+        return SceneToken(
+          kind: .open, start: start, end: index, line: line, column: column)
+      case UInt8(ascii: "}"):
+        index += 1
+        return SceneToken(
+          kind: .close, start: start, end: index, line: line, column: column)
+      default:
+        while index < buffer.count && !Self.endsWord(buffer[index]) {
+          index += 1
+        }
+        return SceneToken(
+          kind: .word, start: start, end: index, line: line, column: column)
+      }
+    }
+  }
+
+  private mutating func skipBlanksAndComments(_ buffer: UnsafeBufferPointer<UInt8>) {
+    while index < buffer.count {
+      let byte = buffer[index]
+      if byte == UInt8(ascii: "\n") {
+        index += 1
+        line += 1
+        lineStart = index
+      } else if Self.isBlank(byte) {
+        index += 1
+      } else if byte == UInt8(ascii: "#") {
+        while index < buffer.count && buffer[index] != UInt8(ascii: "\n") {
+          index += 1
+        }
+      } else {
+        return
+      }
+    }
+  }
+
+  private static func isBlank(_ byte: UInt8) -> Bool {
+    byte == 0x20 || byte == 0x09 || byte == 0x0D || byte == 0x0B || byte == 0x0C
+  }
+
+  private static func endsWord(_ byte: UInt8) -> Bool {
+    isBlank(byte) || byte == UInt8(ascii: "\n") || byte == UInt8(ascii: "{")
+      || byte == UInt8(ascii: "}") || byte == UInt8(ascii: "#")
+  }
+
+  /// The token's text, for messages and the rare slow paths.
+  func text(of token: SceneToken) -> String {
+    switch token.kind {
+    case .end: return "end of file"
+    default: return String(decoding: bytes[token.start..<token.end], as: UTF8.self)
+    }
+  }
+
+  /// Whether the token is exactly `keyword`, without building a String.
+  func matches(_ token: SceneToken, _ keyword: StaticString) -> Bool {
+    guard token.kind == .word, token.end - token.start == keyword.utf8CodeUnitCount
+    else { return false }
+    return bytes.withUnsafeBufferPointer { buffer in
+      let pointer = keyword.utf8Start
+      for offset in 0..<keyword.utf8CodeUnitCount
+      where buffer[token.start + offset] != pointer[offset] {
+        return false
+      }
+      return true
+    }
+  }
+
+  /// The token as a number, or nil if it is not one.
+  func number(_ token: SceneToken) -> Double? {
+    guard token.kind == .word else { return nil }
+    return bytes.withUnsafeBufferPointer { buffer in
+      DecimalParser.parse(
+        UnsafeBufferPointer(rebasing: buffer[token.start..<token.end]))
+    }
+  }
+}

@@ -1,0 +1,26 @@
+import ArgumentParser
+import RayTracer
+
+#if canImport(Glibc)
+import Glibc
+#elseif canImport(Darwin)
+import Darwin
+#endif
+
+@main
+struct Raytrace: ParsableCommand {
+  static let configuration = CommandConfiguration(
+    commandName: "raytrace",
+    abstract: "Ray-cast a scene of spheres and planes into shaded, depth and normal images.",
+    subcommands: [Render.self],
+    defaultSubcommand: Render.self)
+}
+
+extension ImageStyle: @retroactive ExpressibleByArgument {}
+extension Precision: @retroactive ExpressibleByArgument {}
+extension IntersectionMethod: @retroactive ExpressibleByArgument {}
+
+/// Writes one line to standard error.
+func printError(_ line: String) {
+  fputs(line + "\n", stderr)
+}

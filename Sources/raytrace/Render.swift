@@ -1,0 +1,254 @@
+import ArgumentParser
+import RayTracer
+
+#if canImport(Glibc)
+import Glibc
+#elseif canImport(Darwin)
+import Darwin
+#endif
+
+struct Render: ParsableCommand {
+  static let configuration = CommandConfiguration(
+    commandName: "render",
+    abstract: "Render a scene file (the default command).",
+    discussion: """
+      Each output's format comes from its extension: .png (8-bit RGB), .ppm \
+      (binary P6), .pfm (32-bit float: raw t with +inf for a miss, or raw \
+      normals with 0 0 0 for a miss) or .npy (the same raw values in the \
+      render's precision). At least one output is required.
+
+      The original assignment's command line is accepted as is and implies \
+      --style mit:
+        raytrace -input SCENE -size W H [-output FILE] [-normals FILE] \
+      [-depth MIN MAX FILE]
+      """)
+
+  @Argument(help: "The scene file, in the course's text format.")
+  var scene: String?
+
+  @Option(
+    name: .customLong("input", withSingleDash: true),
+    help: ArgumentHelp("The scene file (the assignment's spelling).", valueName: "scene"))
+  var input: String?
+
+  @Option(
+    name: [.customShort("o"), .long, .customLong("output", withSingleDash: true)],
+    help: ArgumentHelp("Write the shaded image to this file.", valueName: "file"))
+  var output: String?
+
+  @Option(
+    name: [.long, .customLong("size", withSingleDash: true)], parsing: .upToNextOption,
+    help: ArgumentHelp("Image width and height in pixels (default: 800 800).", valueName: "w h"))
+  var size: [Int] = []
+
+  @Option(
+    name: .long,
+    help: ArgumentHelp("Write the depth image to this file.", valueName: "file"))
+  var depth: String?
+
+  @Option(
+    name: .customLong("depth", withSingleDash: true), parsing: .upToNextOption,
+    help: ArgumentHelp(
+      "The assignment's depth option: range and file (mit style).",
+      valueName: "min max file"))
+  var assignmentDepth: [String] = []
+
+  @Option(
+    name: .customLong("depth-range"), parsing: .upToNextOption,
+    help: ArgumentHelp(
+      "Map depths MIN..MAX to the depth image (default: the course style takes the nearest to the farthest hit closer than 40; the mit style the nearest to the farthest hit).",
+      valueName: "min max"))
+  var depthRange: [Double] = []
+
+  @Option(
+    name: [.long, .customLong("normals", withSingleDash: true)],
+    help: ArgumentHelp("Write the normals image to this file.", valueName: "file"))
+  var normals: String?
+
+  @Option(
+    help: ArgumentHelp(
+      "Image convention: course (the Swift course's images) or mit (the original assignment's; the default with -input).",
+      valueName: "style"))
+  var style: ImageStyle?
+
+  @Option(help: "Precision of the geometry and shading: double is exact to a few ulps on every scene of the stiff suite; float is faster but loses planets and far-from-origin scenes.")
+  var precision: Precision = .double
+
+  @Option(help: "Sphere intersection: stable (cancellation-free) or naive (the course's textbook formula, for comparison).")
+  var intersection: IntersectionMethod = .stable
+
+  @Option(help: "Worker threads (default: all cores). The image is identical for any count.")
+  var threads: Int?
+
+  @Option(
+    name: .customLong("png-level"),
+    help: "zlib level for PNG files, 0 to 9: lower is faster and larger, higher smaller and slower.")
+  var pngLevel: Int = Int(PNGOptions.default.compressionLevel)
+
+  @Flag(help: "Print what was rendered to standard error: size, rays, time, throughput, and which outputs were computed or left out.")
+  var stats = false
+
+  /// The checked form of the options, made in `validate()`.
+  private struct Plan {
+    var scenePath: String
+    var settings: RenderSettings
+    var files: [OutputFile]
+    var depthRange: ClosedRange<Double>?
+  }
+
+  mutating func validate() throws {
+    _ = try plan()
+  }
+
+  private func plan() throws -> Plan {
+    let scenePath: String
+    switch (scene, input) {
+    case (let path?, nil), (nil, let path?): scenePath = path
+    case (nil, nil): throw ValidationError("Missing the scene file.")
+    case (_?, _?): throw ValidationError("Give the scene either as an argument or with -input, not both.")
+    }
+    var width = 800
+    var height = 800
+    if !size.isEmpty {
+      guard size.count == 2 else {
+        throw ValidationError("--size takes two values, W and H; got \(size.count).")
+      }
+      guard (1...32768).contains(size[0]), (1...32768).contains(size[1]) else {
+        throw ValidationError("--size needs W and H between 1 and 32768; got \(size[0]) \(size[1]).")
+      }
+      (width, height) = (size[0], size[1])
+    }
+    var range: ClosedRange<Double>?
+    var depthPath = depth
+    if !assignmentDepth.isEmpty {
+      guard depth == nil else {
+        throw ValidationError("Give the depth image either with --depth or with -depth, not both.")
+      }
+      guard assignmentDepth.count == 3, let low = Double(assignmentDepth[0]),
+        let high = Double(assignmentDepth[1])
+      else {
+        throw ValidationError("-depth takes three values: MIN MAX FILE.")
+      }
+      range = try checkedRange(low, high, option: "-depth")
+      depthPath = assignmentDepth[2]
+    }
+    if !depthRange.isEmpty {
+      guard range == nil else {
+        throw ValidationError("-depth already gives a range; drop --depth-range.")
+      }
+      guard depthRange.count == 2 else {
+        throw ValidationError("--depth-range takes two values, MIN and MAX.")
+      }
+      range = try checkedRange(depthRange[0], depthRange[1], option: "--depth-range")
+    }
+    var files: [OutputFile] = []
+    for (kind, path) in [(RenderOutputs.shaded, output), (.depth, depthPath), (.normals, normals)] {
+      guard let path else { continue }
+      guard let file = OutputFile(kind: kind, path: path) else {
+        throw ValidationError(
+          "Cannot tell the format of '\(path)': use .png, .ppm, .pfm or .npy.")
+      }
+      files.append(file)
+    }
+    guard !files.isEmpty else {
+      throw ValidationError("Nothing to render: give at least one of -o, --depth or --normals.")
+    }
+    guard Set(files.map(\.path)).count == files.count else {
+      throw ValidationError("Two outputs name the same file.")
+    }
+    if let threads, threads < 1 {
+      throw ValidationError("--threads must be at least 1; got \(threads).")
+    }
+    guard (0...9).contains(pngLevel) else {
+      throw ValidationError("--png-level must be between 0 and 9; got \(pngLevel).")
+    }
+    let settings = RenderSettings(
+      width: width, height: height, outputs: [],
+      style: style ?? (input != nil ? .mit : .course), method: intersection,
+      precision: precision, threads: threads ?? Renderer.availableCores)
+    return Plan(scenePath: scenePath, settings: settings, files: files, depthRange: range)
+  }
+
+  private func checkedRange(_ low: Double, _ high: Double, option: String) throws -> ClosedRange<Double> {
+    guard low.isFinite, high.isFinite, low < high else {
+      throw ValidationError("\(option) needs finite MIN < MAX; got \(low) \(high).")
+    }
+    return low...high
+  }
+
+  func run() throws {
+    let plan = try plan()
+    let scene: Scene
+    do {
+      scene = try SceneParser.parse(contentsOf: plan.scenePath)
+    } catch {
+      printError(error.description)
+      throw ExitCode.failure
+    }
+    do {
+      for file in plan.files {
+        try AtomicFile.checkWritable(file.path)
+      }
+    } catch {
+      printError("raytrace: error: \(error)")
+      throw ExitCode.failure
+    }
+    var png = PNGOptions.default
+    png.compressionLevel = Int32(pngLevel)
+    let report: RenderReport
+    do {
+      report = try RenderJob.run(
+        scene: scene, settings: plan.settings, files: plan.files,
+        depthRange: plan.depthRange, png: png)
+    } catch {
+      printError("raytrace: error: \(error)")
+      throw ExitCode.failure
+    }
+    if stats {
+      printStats(report, scenePath: plan.scenePath)
+    }
+  }
+
+  private func printStats(_ report: RenderReport, scenePath: String) {
+    let settings = report.settings
+    printError(
+      "scene: \(scenePath): \(report.spheres) spheres, \(report.planes) planes, "
+        + "BVH \(report.usesHierarchy ? "used" : "not used")")
+    printError(
+      "size: \(settings.width)x\(settings.height), \(report.rays) rays, "
+        + "precision \(settings.precision.rawValue), intersection \(settings.method.rawValue), "
+        + "style \(settings.style.rawValue), threads \(settings.threads)")
+    printError(
+      "outputs: \(settings.outputs.names.joined(separator: ", "))"
+        + "; left out: \(report.leftOut.isEmpty ? "nothing" : report.leftOut.joined(separator: ", "))")
+    if let range = report.depthRange {
+      printError("depth range: \(range.lowerBound) to \(range.upperBound)")
+    }
+    printError("compile: \(seconds(report.compileSeconds))")
+    printError(
+      "render: \(seconds(report.renderSeconds)), "
+        + "\(formatted(report.megaraysPerSecond, digits: 3)) Mrays/s")
+    printError("write: \(seconds(report.writeSeconds))")
+  }
+}
+
+func seconds(_ value: Double) -> String {
+  formatted(value, digits: 4) + " s"
+}
+
+/// `value` with `digits` significant digits, without Foundation.
+func formatted(_ value: Double, digits: Int) -> String {
+  guard value.isFinite, value != 0 else { return "\(value)" }
+  let magnitude = Int((value.magnitude).log10Floor)
+  let decimals = max(0, digits - 1 - magnitude)
+  var scale = 1.0
+  for _ in 0..<decimals { scale *= 10 }
+  let rounded = (value * scale).rounded() / scale
+  var text = "\(rounded)"
+  if decimals == 0, text.hasSuffix(".0") { text.removeLast(2) }
+  return text
+}
+
+extension Double {
+  fileprivate var log10Floor: Double { (Glibc.log10(self)).rounded(.down) }
+}
