@@ -12,15 +12,10 @@ struct Raytrace: ParsableCommand {
   static let configuration = CommandConfiguration(
     commandName: "raytrace",
     abstract: "Ray-cast a scene of spheres and planes into shaded, depth and normal images.",
-    subcommands: [Render.self],
+    subcommands: [Render.self, Report.self],
     defaultSubcommand: Render.self)
 }
 
 extension ImageStyle: @retroactive ExpressibleByArgument {}
 extension Precision: @retroactive ExpressibleByArgument {}
 extension IntersectionMethod: @retroactive ExpressibleByArgument {}
-
-/// Writes one line to standard error.
-func printError(_ line: String) {
-  fputs(line + "\n", stderr)
-}

@@ -231,24 +231,3 @@ struct Render: ParsableCommand {
     printError("write: \(seconds(report.writeSeconds))")
   }
 }
-
-func seconds(_ value: Double) -> String {
-  formatted(value, digits: 4) + " s"
-}
-
-/// `value` with `digits` significant digits, without Foundation.
-func formatted(_ value: Double, digits: Int) -> String {
-  guard value.isFinite, value != 0 else { return "\(value)" }
-  let magnitude = Int((value.magnitude).log10Floor)
-  let decimals = max(0, digits - 1 - magnitude)
-  var scale = 1.0
-  for _ in 0..<decimals { scale *= 10 }
-  let rounded = (value * scale).rounded() / scale
-  var text = "\(rounded)"
-  if decimals == 0, text.hasSuffix(".0") { text.removeLast(2) }
-  return text
-}
-
-extension Double {
-  fileprivate var log10Floor: Double { (Glibc.log10(self)).rounded(.down) }
-}

@@ -46,15 +46,16 @@ extension Sphere: Intersectable {
       let inverseA = 1 / ray.direction.lengthSquared
       let radiusSquared = radius * radius
       guard
-        let t = SphereIntersection.stableRoot(
-          direction: ray.direction, inverseLengthSquared: inverseA,
-          offset: relative.offset, c: relative.c,
+        let root = SphereIntersection.stableRoot(
+          direction: ray.direction, lengthSquared: ray.direction.lengthSquared,
+          inverseLengthSquared: inverseA, offset: relative.offset, c: relative.c,
           radiusSquared: radiusSquared, after: tMin, before: tMax)
       else { return nil }
       let normal = SphereIntersection.stableNormal(
         direction: ray.direction, inverseLengthSquared: inverseA,
-        offset: relative.offset, radiusSquared: radiusSquared, t: t)
-      return Hit(t: t, normal: normal, materialIndex: materialIndex)
+        offset: relative.offset, radiusSquared: radiusSquared,
+        entering: root.entering)
+      return Hit(t: root.t, normal: normal, materialIndex: materialIndex)
     }
   }
 }

@@ -4,7 +4,9 @@ public struct CameraRay<Scalar: RayScalar>: Sendable {
   /// The eye in the kernel's frame: the origin for camera-relative kernels.
   public var origin: Vector3<Scalar>
   public var direction: Vector3<Scalar>
-  /// 1 / (d·d): exactly 1 only when the rounded direction is exactly unit.
+  /// d·d, and its inverse: exactly 1 only when the rounded direction is
+  /// exactly unit.
+  public var lengthSquared: Scalar
   public var inverseLengthSquared: Scalar
   /// 1 / d per component (±inf for a zero component), for box tests.
   public var inverseDirection: Vector3<Scalar>
@@ -13,7 +15,8 @@ public struct CameraRay<Scalar: RayScalar>: Sendable {
   public init(origin: Vector3<Scalar>, direction: Vector3<Scalar>) {
     self.origin = origin
     self.direction = direction
-    inverseLengthSquared = 1 / direction.lengthSquared
+    lengthSquared = direction.lengthSquared
+    inverseLengthSquared = 1 / lengthSquared
     inverseDirection = Vector3(1 / direction.x, 1 / direction.y, 1 / direction.z)
   }
 }
@@ -166,17 +169,22 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
     _ record: SphereRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
   ) -> Scalar? {
     SphereIntersection.stableRoot(
-      direction: ray.direction, inverseLengthSquared: ray.inverseLengthSquared,
+      direction: ray.direction, lengthSquared: ray.lengthSquared,
+      inverseLengthSquared: ray.inverseLengthSquared,
       offset: record.offset, c: record.c, radiusSquared: record.radiusSquared,
-      after: 0, before: tMax)
+      after: 0, before: tMax)?.t
   }
 
+  /// Camera rays start at t = 0, so the root hit is the entering one exactly
+  /// when the eye is outside the sphere (c > 0): with c < 0 the smaller root
+  /// is negative, and with c = 0 it is zero, which is not > 0.
   public static func normal(
     _ record: SphereRecord, _ ray: CameraRay<Scalar>, t: Scalar
   ) -> Vector3<Scalar> {
     SphereIntersection.stableNormal(
       direction: ray.direction, inverseLengthSquared: ray.inverseLengthSquared,
-      offset: record.offset, radiusSquared: record.radiusSquared, t: t)
+      offset: record.offset, radiusSquared: record.radiusSquared,
+      entering: record.c > 0)
   }
 
   public static func intersect(

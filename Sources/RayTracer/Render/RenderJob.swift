@@ -82,21 +82,22 @@ public enum RenderJob {
     let buffers = Renderer.render(compiled, settings: settings, progress: progress)
     let renderSeconds = clock.lap()
     var usedRange: ClosedRange<Double>?
+    var encoded: [(bytes: [UInt8], path: String)] = []
     for file in files {
       let bytes: [UInt8]
-      switch (file.kind, file.format.isEightBit) {
-      case (.depth, true):
+      if !file.format.isEightBit {
+        bytes = encodeRaw(rawImage(file.kind, buffers), file.format)
+      } else if file.kind == .depth {
         usedRange = settings.style.depthRange(buffers.depth, given: depthRange)
         bytes = encode(settings.style.depthImage(buffers, range: depthRange), file.format, png)
-      case (.normals, true):
+      } else if file.kind == .normals {
         bytes = encode(settings.style.normalImage(buffers), file.format, png)
-      case (.shaded, true):
+      } else {
         bytes = encode(settings.style.colorImage(buffers), file.format, png)
-      case (let kind, false):
-        bytes = encodeRaw(rawImage(kind, buffers), file.format)
       }
-      try AtomicFile.write(bytes, to: file.path)
+      encoded.append((bytes, file.path))
     }
+    try AtomicFile.writeAll(encoded)
     return RenderReport(
       settings: settings, spheres: compiled.sphereCount, planes: compiled.planeCount,
       usesHierarchy: compiled.usesHierarchy, compileSeconds: compileSeconds,

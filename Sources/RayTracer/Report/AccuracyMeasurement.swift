@@ -1,0 +1,168 @@
+import RealModule
+
+/// How far a render's depth and normals are from the reference path's, per
+/// pixel and in summary.
+///
+/// The reference intersects the very rays the render traced (generated in
+/// the render's precision, converted exactly) in `ReferenceScalar` (Float80
+/// on x86, 64-bit significand) with the stable camera-relative method, its
+/// constants computed from the scene's Double values in twice Double's
+/// precision. What is measured is therefore the error of the intersection,
+/// not a difference in where the camera's rays point.
+public struct AccuracyMeasurement: Sendable {
+  /// Pixels where both hit something.
+  public var comparedHits: Int
+  /// max |t − t_ref| / t_ref over compared hits.
+  public var maxRelativeError: Double
+  /// The 99th percentile of the same.
+  public var p99RelativeError: Double
+  /// Pixels where one hit and the other missed.
+  public var disagreements: Int
+  /// The largest angle between normals over compared hits, in degrees.
+  public var maxNormalErrorDegrees: Double
+  /// Relative error of t per pixel, row 0 at the top: NaN where both
+  /// missed, +inf where they disagree.
+  public var perPixel: [Double]
+
+  /// Compares `buffers` (depth and normals) with `reference`.
+  public init<S: RayScalar, R: RayScalar>(
+    _ buffers: RenderBuffers<S>, against reference: RenderBuffers<R>
+  ) {
+    precondition(buffers.depth.count == reference.depth.count)
+    var errors: [Double] = []
+    var perPixel = [Double](repeating: .nan, count: buffers.depth.count)
+    var disagreements = 0
+    var maxAngle = 0.0
+    let hasNormals = !buffers.normals.isEmpty && !reference.normals.isEmpty
+    for pixel in buffers.depth.indices {
+      let t = buffers.depth[pixel]
+      let want = reference.depth[pixel]
+      switch (t.isFinite, want.isFinite) {
+      case (false, false):
+        continue
+      case (true, true):
+        let error = Double((R(t) - want).magnitude / want)
+        errors.append(error)
+        perPixel[pixel] = error
+        if hasNormals {
+          maxAngle = Swift.max(
+            maxAngle,
+            angleInDegrees(
+              Vector3<Double>(buffers.normals[pixel]),
+              Vector3<Double>(reference.normals[pixel])))
+        }
+      default:
+        disagreements += 1
+        perPixel[pixel] = .infinity
+      }
+    }
+    errors.sort()
+    comparedHits = errors.count
+    maxRelativeError = errors.last ?? 0
+    p99RelativeError =
+      errors.isEmpty ? 0 : errors[Swift.min(errors.count - 1, (errors.count * 99) / 100)]
+    self.disagreements = disagreements
+    maxNormalErrorDegrees = maxAngle
+    self.perPixel = perPixel
+  }
+}
+
+/// The angle between two vectors in degrees, by atan2(|a × b|, a·b): exact
+/// for small angles, where acos(a·b) loses half the digits.
+func angleInDegrees(_ a: Vector3<Double>, _ b: Vector3<Double>) -> Double {
+  let cross = a.cross(b).length
+  return Double.atan2(y: cross, x: a.dot(b)) * 180 / .pi
+}
+
+/// Renders for the accuracy report and the stiff-suite tests.
+public enum AccuracyRender {
+  /// Depth and normals of `scene` by the chosen precision and method, and
+  /// the median time of `runs` renders after one warm-up (compiling the
+  /// scene is not timed).
+  public static func render(
+    _ scene: Scene, width: Int, height: Int, precision: Precision,
+    method: IntersectionMethod, style: ImageStyle = .course, threads: Int = 1,
+    runs: Int = 1
+  ) -> (buffers: AnyRenderBuffers, medianSeconds: Double) {
+    let settings = RenderSettings(
+      width: width, height: height, outputs: [.depth, .normals], style: style,
+      method: method, precision: precision, threads: threads)
+    switch (precision, method) {
+    case (.float, .naive):
+      let (buffers, time) = timed(NaiveKernel<Float>.self, scene, settings, runs)
+      return (.float(buffers), time)
+    case (.float, .stable):
+      let (buffers, time) = timed(StableKernel<Float>.self, scene, settings, runs)
+      return (.float(buffers), time)
+    case (.double, .naive):
+      let (buffers, time) = timed(NaiveKernel<Double>.self, scene, settings, runs)
+      return (.double(buffers), time)
+    case (.double, .stable):
+      let (buffers, time) = timed(StableKernel<Double>.self, scene, settings, runs)
+      return (.double(buffers), time)
+    }
+  }
+
+  private static func timed<Kernel: IntersectionKernel>(
+    _: Kernel.Type, _ scene: Scene, _ settings: RenderSettings, _ runs: Int
+  ) -> (RenderBuffers<Kernel.Scalar>, Double) {
+    let compiled = CompiledScene<Kernel>(scene)
+    var buffers = Renderer.render(compiled, settings: settings)
+    guard runs > 0 else { return (buffers, .nan) }
+    var times: [Double] = []
+    for _ in 0..<runs {
+      var clock = Stopwatch()
+      buffers = Renderer.render(compiled, settings: settings)
+      times.append(clock.lap())
+    }
+    return (buffers, median(times))
+  }
+
+  /// The reference for renders in `precision`: the same camera rays,
+  /// intersected in ReferenceScalar.
+  public static func reference(
+    _ scene: Scene, width: Int, height: Int, rays precision: Precision,
+    style: ImageStyle = .course, threads: Int = 1
+  ) -> RenderBuffers<ReferenceScalar> {
+    let settings = RenderSettings(
+      width: width, height: height, outputs: [.depth, .normals], style: style,
+      method: .stable, precision: precision, threads: threads)
+    let compiled = CompiledScene<StableKernel<ReferenceScalar>>(scene)
+    switch precision {
+    case .float: return Renderer.render(compiled, settings: settings, rays: Float.self)
+    case .double: return Renderer.render(compiled, settings: settings, rays: Double.self)
+    }
+  }
+}
+
+/// Render buffers of either render precision.
+public enum AnyRenderBuffers: Sendable {
+  case float(RenderBuffers<Float>)
+  case double(RenderBuffers<Double>)
+
+  public func measured<R: RayScalar>(
+    against reference: RenderBuffers<R>
+  ) -> AccuracyMeasurement {
+    switch self {
+    case .float(let buffers): AccuracyMeasurement(buffers, against: reference)
+    case .double(let buffers): AccuracyMeasurement(buffers, against: reference)
+    }
+  }
+
+  /// The unit roundoff's double, ε = 2^−23 or 2^−52: errors are reported
+  /// in units of it.
+  public var epsilon: Double {
+    switch self {
+    case .float: Double(Float.ulpOfOne)
+    case .double: Double.ulpOfOne
+    }
+  }
+}
+
+/// The middle value (the mean of the two middle ones for an even count).
+public func median(_ values: [Double]) -> Double {
+  guard !values.isEmpty else { return .nan }
+  let sorted = values.sorted()
+  let middle = sorted.count / 2
+  return sorted.count % 2 == 1 ? sorted[middle] : (sorted[middle - 1] + sorted[middle]) / 2
+}

@@ -1,0 +1,52 @@
+#if canImport(Glibc)
+import Glibc
+#elseif canImport(Darwin)
+import Darwin
+#endif
+
+/// Writes one line to standard error.
+func printError(_ line: String) {
+  fputs(line + "\n", stderr)
+}
+
+func seconds(_ value: Double) -> String {
+  formatted(value, digits: 4) + " s"
+}
+
+/// `value` with `digits` significant digits, in plain notation.
+func formatted(_ value: Double, digits: Int) -> String {
+  guard value.isFinite, value != 0 else { return "\(value)" }
+  let magnitude = Int(log10(value.magnitude).rounded(.down))
+  let decimals = max(0, digits - 1 - magnitude)
+  return String(cString: withFormat("%.\(decimals)f", value))
+}
+
+/// `value` as 1.2e-16, or 0.
+func scientific(_ value: Double) -> String {
+  guard value != 0 else { return "0" }
+  guard value.isFinite else { return "\(value)" }
+  return String(cString: withFormat("%.1e", value))
+}
+
+private func withFormat(_ format: String, _ value: Double) -> [CChar] {
+  var buffer = [CChar](repeating: 0, count: 64)
+  _ = withVaList([value]) { arguments in
+    vsnprintf(&buffer, buffer.count, format, arguments)
+  }
+  return buffer
+}
+
+/// The `.txt` files directly in `folder`, sorted by name; empty when the
+/// folder cannot be read.
+func listTextFiles(in folder: String) -> [String] {
+  guard let directory = opendir(folder) else { return [] }
+  defer { closedir(directory) }
+  var names: [String] = []
+  while let entry = readdir(directory) {
+    let name = withUnsafeBytes(of: entry.pointee.d_name) { raw in
+      String(decoding: raw.prefix { $0 != 0 }, as: UTF8.self)
+    }
+    if name.hasSuffix(".txt") { names.append(folder + "/" + name) }
+  }
+  return names.sorted()
+}

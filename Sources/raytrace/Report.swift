@@ -1,0 +1,177 @@
+import ArgumentParser
+import RayTracer
+
+/// `raytrace report`: error against run time for every precision and method.
+struct Report: ParsableCommand {
+  static let configuration = CommandConfiguration(
+    commandName: "report",
+    abstract: "Measure each precision and intersection method against a high-precision reference.",
+    discussion: """
+      Renders every scene with float and double, naive and stable, times each \
+      (median of --runs renders after a warm-up), compares depth and normals \
+      with the reference path (the same camera rays intersected in 80-bit \
+      extended precision) and prints a Markdown table. Relative errors are \
+      |t − t_ref| / t_ref; ε is 2^-23 for float and 2^-52 for double.
+      """)
+
+  @Argument(help: "Scene files (default: scenes/stiff/*.txt and the course-like scenes in scenes/).")
+  var scenes: [String] = []
+
+  @Option(help: ArgumentHelp("Image width and height.", valueName: "w h"), parsing: .upToNextOption)
+  var size: [Int] = [200, 200]
+
+  @Option(help: "Timed renders per row, after one warm-up.")
+  var runs: Int = 5
+
+  @Option(help: "Worker threads for the timed renders (default: all cores).")
+  var threads: Int?
+
+  @Option(help: ArgumentHelp("Also write the rows as CSV to this file.", valueName: "file"))
+  var csv: String?
+
+  @Option(
+    help: ArgumentHelp(
+      "Write one PNG per row with the per-pixel error of t in false colour.",
+      valueName: "dir"))
+  var heatmaps: String?
+
+  static let defaultScenes = [
+    "scenes/spheres.txt", "scenes/spheres-only.txt", "scenes/single-sphere.txt",
+  ]
+
+  mutating func validate() throws {
+    guard size.count == 2, size.allSatisfy({ (1...4096).contains($0) }) else {
+      throw ValidationError("--size takes two values between 1 and 4096.")
+    }
+    guard runs >= 1 else { throw ValidationError("--runs must be at least 1.") }
+    if let threads, threads < 1 { throw ValidationError("--threads must be at least 1.") }
+  }
+
+  func run() throws {
+    let paths = scenes.isEmpty ? try defaultScenePaths() : scenes
+    let (width, height) = (size[0], size[1])
+    let threads = threads ?? Renderer.availableCores
+    var rows: [AccuracyRow] = []
+    var encodedMaps: [(bytes: [UInt8], path: String)] = []
+    if let heatmaps {
+      try checkOutputFolder(heatmaps)
+    }
+    if let csv {
+      try checked { try AtomicFile.checkWritable(csv) }
+    }
+    print(AccuracyRow.markdownHeader)
+    for path in paths {
+      let scene: Scene
+      do {
+        scene = try SceneParser.parse(contentsOf: path)
+      } catch {
+        printError(error.description)
+        throw ExitCode.failure
+      }
+      let name = sceneName(path)
+      for precision in Precision.allCases {
+        let reference = AccuracyRender.reference(
+          scene, width: width, height: height, rays: precision, threads: threads)
+        for method in IntersectionMethod.allCases {
+          let (buffers, seconds) = AccuracyRender.render(
+            scene, width: width, height: height, precision: precision,
+            method: method, threads: threads, runs: runs)
+          let measurement = buffers.measured(against: reference)
+          let row = AccuracyRow(
+            scene: name, precision: precision, method: method, width: width,
+            height: height, seconds: seconds, measurement: measurement,
+            epsilon: buffers.epsilon)
+          print(row.markdown)
+          rows.append(row)
+          if let heatmaps {
+            let image = ErrorHeatmap.image(
+              measurement, width: width, height: height, epsilon: buffers.epsilon)
+            encodedMaps.append(
+              (
+                PNGEncoder.encode(image),
+                "\(heatmaps)/\(name)-\(precision.rawValue)-\(method.rawValue).png"
+              ))
+          }
+        }
+      }
+    }
+    if let csv {
+      let text = ([AccuracyRow.csvHeader] + rows.map(\.csv)).joined(separator: "\n") + "\n"
+      try checked { try AtomicFile.write(Array(text.utf8), to: csv) }
+    }
+    if !encodedMaps.isEmpty {
+      try checked { try AtomicFile.writeAll(encodedMaps) }
+    }
+  }
+
+  /// The stiff suite and the course-like scenes, from the project's root.
+  private func defaultScenePaths() throws -> [String] {
+    let stiff = listTextFiles(in: "scenes/stiff")
+    guard !stiff.isEmpty else {
+      throw ValidationError(
+        "No scenes given and scenes/stiff/ not found: run from the project's root or name the scenes.")
+    }
+    return stiff + Self.defaultScenes
+  }
+
+  private func sceneName(_ path: String) -> String {
+    var name = path.split(separator: "/").last.map(String.init) ?? path
+    if name.hasSuffix(".txt") { name.removeLast(4) }
+    return name
+  }
+
+  private func checkOutputFolder(_ folder: String) throws {
+    try checked { try AtomicFile.checkWritable(folder + "/.probe") }
+  }
+
+  private func checked(_ body: () throws(OutputError) -> Void) throws {
+    do {
+      try body()
+    } catch {
+      printError("raytrace: error: \(error)")
+      throw ExitCode.failure
+    }
+  }
+}
+
+/// One row of the report.
+struct AccuracyRow {
+  var scene: String
+  var precision: Precision
+  var method: IntersectionMethod
+  var width: Int
+  var height: Int
+  var seconds: Double
+  var measurement: AccuracyMeasurement
+  var epsilon: Double
+
+  var megaraysPerSecond: Double { Double(width * height) / seconds / 1e6 }
+
+  static let markdownHeader = """
+    | scene | precision | method | time (ms) | Mrays/s | max rel. error of t | p99 rel. error | max (ε) | hit/miss disagreements | max normal error (°) |
+    |---|---|---|---:|---:|---:|---:|---:|---:|---:|
+    """
+
+  var markdown: String {
+    let m = measurement
+    return "| \(scene) | \(precision.rawValue) | \(method.rawValue) | "
+      + "\(formatted(seconds * 1000, digits: 3)) | \(formatted(megaraysPerSecond, digits: 3)) | "
+      + "\(scientific(m.maxRelativeError)) | \(scientific(m.p99RelativeError)) | "
+      + "\(scientific(m.maxRelativeError / epsilon)) | \(m.disagreements) | "
+      + "\(scientific(m.maxNormalErrorDegrees)) |"
+  }
+
+  static let csvHeader =
+    "scene,precision,method,width,height,seconds,mrays_per_s,max_rel_error,p99_rel_error,"
+    + "max_rel_error_eps,disagreements,compared_hits,max_normal_error_deg"
+
+  var csv: String {
+    let m = measurement
+    return [
+      scene, precision.rawValue, method.rawValue, "\(width)", "\(height)", "\(seconds)",
+      "\(megaraysPerSecond)", "\(m.maxRelativeError)", "\(m.p99RelativeError)",
+      "\(m.maxRelativeError / epsilon)", "\(m.disagreements)", "\(m.comparedHits)",
+      "\(m.maxNormalErrorDegrees)",
+    ].joined(separator: ",")
+  }
+}
