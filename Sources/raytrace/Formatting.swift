@@ -6,7 +6,15 @@ import Darwin
 
 /// Writes one line to standard error.
 func printError(_ line: String) {
-  fputs(line + "\n", stderr)
+  // write(2) rather than fputs(stderr): the C global is shared mutable
+  // state to Swift 6, and one unbuffered write keeps the line whole.
+  let bytes = Array((line + "\n").utf8)
+  var written = 0
+  while written < bytes.count {
+    let result = bytes[written...].withUnsafeBytes { write(2, $0.baseAddress, $0.count) }
+    if result <= 0 { return }
+    written += result
+  }
 }
 
 func seconds(_ value: Double) -> String {

@@ -16,6 +16,6 @@ struct Raytrace: ParsableCommand {
     defaultSubcommand: Render.self)
 }
 
-extension ImageStyle: @retroactive ExpressibleByArgument {}
-extension Precision: @retroactive ExpressibleByArgument {}
-extension IntersectionMethod: @retroactive ExpressibleByArgument {}
+extension ImageStyle: ExpressibleByArgument {}
+extension Precision: ExpressibleByArgument {}
+extension IntersectionMethod: ExpressibleByArgument {}

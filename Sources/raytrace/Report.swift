@@ -17,7 +17,7 @@ struct Report: ParsableCommand {
   @Argument(help: "Scene files (default: scenes/stiff/*.txt and the course-like scenes in scenes/).")
   var scenes: [String] = []
 
-  @Option(help: ArgumentHelp("Image width and height.", valueName: "w h"), parsing: .upToNextOption)
+  @Option(parsing: .upToNextOption, help: ArgumentHelp("Image width and height.", valueName: "w h"))
   var size: [Int] = [200, 200]
 
   @Option(help: "Timed renders per row, after one warm-up.")
@@ -57,7 +57,7 @@ struct Report: ParsableCommand {
       try checkOutputFolder(heatmaps)
     }
     if let csv {
-      try checked { try AtomicFile.checkWritable(csv) }
+      try checked { () throws(OutputError) in try AtomicFile.checkWritable(csv) }
     }
     print(AccuracyRow.markdownHeader)
     for path in paths {
@@ -97,10 +97,10 @@ struct Report: ParsableCommand {
     }
     if let csv {
       let text = ([AccuracyRow.csvHeader] + rows.map(\.csv)).joined(separator: "\n") + "\n"
-      try checked { try AtomicFile.write(Array(text.utf8), to: csv) }
+      try checked { () throws(OutputError) in try AtomicFile.write(Array(text.utf8), to: csv) }
     }
     if !encodedMaps.isEmpty {
-      try checked { try AtomicFile.writeAll(encodedMaps) }
+      try checked { () throws(OutputError) in try AtomicFile.writeAll(encodedMaps) }
     }
   }
 
@@ -121,7 +121,7 @@ struct Report: ParsableCommand {
   }
 
   private func checkOutputFolder(_ folder: String) throws {
-    try checked { try AtomicFile.checkWritable(folder + "/.probe") }
+    try checked { () throws(OutputError) in try AtomicFile.checkWritable(folder + "/.probe") }
   }
 
   private func checked(_ body: () throws(OutputError) -> Void) throws {

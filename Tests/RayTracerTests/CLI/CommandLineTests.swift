@@ -1,0 +1,219 @@
+import Foundation
+import XCTest
+
+@testable import RayTracer
+
+/// Runs the built `raytrace` executable, as students and graders do.
+final class CommandLineTests: XCTestCase {
+  struct Outcome {
+    var status: Int32
+    var stdout: String
+    var stderr: String
+  }
+
+  static var packageRoot: String {
+    var parts = "\(#filePath)".split(separator: "/", omittingEmptySubsequences: false)
+    parts.removeLast(4)
+    return parts.joined(separator: "/")
+  }
+
+  /// The executable beside the test bundle (SwiftPM builds it first: the
+  /// test target depends on it).
+  static var executable: String {
+    let bundle = URL(fileURLWithPath: CommandLine.arguments[0]).deletingLastPathComponent()
+    var url = bundle
+    while url.path != "/" {
+      let candidate = url.appendingPathComponent("raytrace").path
+      var isDirectory: ObjCBool = false
+      if FileManager.default.fileExists(atPath: candidate, isDirectory: &isDirectory),
+        !isDirectory.boolValue
+      {
+        return candidate
+      }
+      url.deleteLastPathComponent()
+    }
+    return bundle.appendingPathComponent("raytrace").path
+  }
+
+  var folder = ""
+
+  override func setUpWithError() throws {
+    folder = NSTemporaryDirectory() + "raytrace-cli-\(UUID().uuidString)"
+    try FileManager.default.createDirectory(atPath: folder, withIntermediateDirectories: true)
+  }
+
+  override func tearDownWithError() throws {
+    try? FileManager.default.removeItem(atPath: folder)
+  }
+
+  @discardableResult
+  func run(_ arguments: [String]) throws -> Outcome {
+    let process = Process()
+    process.executableURL = URL(fileURLWithPath: Self.executable)
+    process.arguments = arguments
+    process.currentDirectoryURL = URL(fileURLWithPath: Self.packageRoot)
+    let out = Pipe()
+    let err = Pipe()
+    process.standardOutput = out
+    process.standardError = err
+    try process.run()
+    let outData = out.fileHandleForReading.readDataToEndOfFile()
+    let errData = err.fileHandleForReading.readDataToEndOfFile()
+    process.waitUntilExit()
+    return Outcome(
+      status: process.terminationStatus,
+      stdout: String(decoding: outData, as: UTF8.self),
+      stderr: String(decoding: errData, as: UTF8.self))
+  }
+
+  func files() -> [String] {
+    ((try? FileManager.default.contentsOfDirectory(atPath: folder)) ?? []).sorted()
+  }
+
+  func read(_ name: String) throws -> [UInt8] {
+    Array(try Data(contentsOf: URL(fileURLWithPath: folder + "/" + name)))
+  }
+
+  // MARK: - Help and usage errors
+
+  func testHelp_DocumentsEveryOption() throws {
+    let outcome = try run(["--help"])
+    XCTAssertEqual(outcome.status, 0)
+    for option in [
+      "--output", "--size", "--depth", "--depth-range", "--normals", "--style",
+      "--stats", "--precision", "--intersection", "--threads", "--png-level", "-input",
+    ] {
+      XCTAssertTrue(outcome.stdout.contains(option), "help does not mention \(option)")
+    }
+  }
+
+  func testUsage_NoOutputIsExit64() throws {
+    let outcome = try run(["scenes/spheres.txt"])
+    XCTAssertEqual(outcome.status, 64)
+    XCTAssertTrue(outcome.stderr.contains("Nothing to render"), outcome.stderr)
+  }
+
+  func testUsage_UnknownExtensionIsExit64() throws {
+    let outcome = try run(["scenes/spheres.txt", "-o", folder + "/a.jpg"])
+    XCTAssertEqual(outcome.status, 64)
+    XCTAssertTrue(outcome.stderr.contains("Cannot tell the format"), outcome.stderr)
+    XCTAssertEqual(files(), [])
+  }
+
+  func testUsage_TheSameFileTwiceIsExit64() throws {
+    let path = folder + "/a.png"
+    let outcome = try run(["scenes/spheres.txt", "-o", path, "--normals", path])
+    XCTAssertEqual(outcome.status, 64)
+  }
+
+  func testUsage_BadSizeIsExit64() throws {
+    for size in [["0", "10"], ["-5", "10"], ["1000000", "1000000"], ["10"]] {
+      let outcome = try run(["scenes/spheres.txt", "-o", folder + "/a.png", "--size"] + size)
+      XCTAssertEqual(outcome.status, 64, "size \(size): \(outcome.stderr)")
+    }
+  }
+
+  // MARK: - Scene and output errors
+
+  func testSceneError_OneLineWithPositionAndExit1() throws {
+    let scene = folder + "/bad.txt"
+    try "PerspectiveCamera {\n  center 0 0 1O\n}\n".write(
+      toFile: scene, atomically: true, encoding: .utf8)
+    let outcome = try run([scene, "-o", folder + "/out.png"])
+    XCTAssertEqual(outcome.status, 1)
+    XCTAssertEqual(
+      outcome.stderr, "\(scene):2:14: error: expected a number, found '1O'\n")
+    XCTAssertFalse(files().contains("out.png"))
+  }
+
+  func testSceneError_MissingFile() throws {
+    let outcome = try run([folder + "/none.txt", "-o", folder + "/out.png"])
+    XCTAssertEqual(outcome.status, 1)
+    XCTAssertEqual(
+      outcome.stderr, "\(folder)/none.txt: error: cannot open the file: No such file or directory\n")
+  }
+
+  func testOutputError_UnwritablePathBeforeRendering() throws {
+    let outcome = try run(["scenes/spheres.txt", "-o", folder + "/missing/out.png"])
+    XCTAssertEqual(outcome.status, 1)
+    XCTAssertTrue(outcome.stderr.hasPrefix("raytrace: error: cannot write"), outcome.stderr)
+    XCTAssertEqual(outcome.stderr.filter { $0 == "\n" }.count, 1)
+  }
+
+  // MARK: - Renders
+
+  func testRender_EveryFormatOfEveryOutput() throws {
+    let outcome = try run([
+      "scenes/spheres.txt", "--size", "40", "30", "-o", folder + "/s.png",
+      "--depth", folder + "/d.pfm", "--normals", folder + "/n.npy",
+    ])
+    XCTAssertEqual(outcome.status, 0, outcome.stderr)
+    XCTAssertEqual(files(), ["d.pfm", "n.npy", "s.png"])
+    let shaded = try PNGDecoder.decode(try read("s.png"))
+    XCTAssertEqual(shaded.width, 40)
+    XCTAssertEqual(shaded.height, 30)
+    XCTAssertGreaterThan(Set(stride(from: 0, to: shaded.bytes.count, by: 3).map { shaded.bytes[$0] }).count, 10)
+    let depth = try read("d.pfm")
+    XCTAssertEqual(depth.count, "Pf\n40 30\n-1.0\n".utf8.count + 40 * 30 * 4)
+    let normals = try read("n.npy")
+    XCTAssertEqual(Array(normals[1..<6]), Array("NUMPY".utf8))
+    XCTAssertEqual(normals.count % 64, (40 * 30 * 3 * 8) % 64)
+  }
+
+  func testRender_PPM() throws {
+    let outcome = try run(["scenes/single-sphere.txt", "--size", "8", "6", "--normals", folder + "/n.ppm"])
+    XCTAssertEqual(outcome.status, 0, outcome.stderr)
+    let bytes = try read("n.ppm")
+    XCTAssertEqual(bytes.count, "P6\n8 6\n255\n".utf8.count + 8 * 6 * 3)
+  }
+
+  func testRender_ThreadCountDoesNotChangeABit() throws {
+    for threads in ["1", "2", "3"] {
+      let outcome = try run([
+        "scenes/spheres.txt", "--size", "64", "48", "--threads", threads,
+        "-o", folder + "/s\(threads).png", "--depth", folder + "/d\(threads).pfm",
+      ])
+      XCTAssertEqual(outcome.status, 0, outcome.stderr)
+    }
+    XCTAssertEqual(try read("s1.png"), try read("s2.png"))
+    XCTAssertEqual(try read("s1.png"), try read("s3.png"))
+    XCTAssertEqual(try read("d1.pfm"), try read("d2.pfm"))
+  }
+
+  func testRender_AssignmentCommandLine() throws {
+    let outcome = try run([
+      "-input", "scenes/spheres.txt", "-size", "20", "20", "-output", folder + "/a.png",
+      "-normals", folder + "/an.png", "-depth", "8", "18", folder + "/ad.png",
+    ])
+    XCTAssertEqual(outcome.status, 0, outcome.stderr)
+    XCTAssertEqual(files(), ["a.png", "ad.png", "an.png"])
+    // The mit style paints misses in the normals image grey, (0 + 1)/2.
+    let normals = try PNGDecoder.decode(try read("an.png"))
+    XCTAssertEqual(normals[0, 0].0, 128)
+  }
+
+  func testStats_ReportsThroughputAndWhatWasLeftOut() throws {
+    let outcome = try run([
+      "scenes/spheres-only.txt", "--size", "16", "16", "--depth", folder + "/d.png", "--stats",
+    ])
+    XCTAssertEqual(outcome.status, 0, outcome.stderr)
+    let render = outcome.stderr.split(separator: "\n").first { $0.hasPrefix("render:") }
+    XCTAssertNotNil(render, outcome.stderr)
+    XCTAssertTrue(render?.contains("Mrays/s") ?? false)
+    XCTAssertTrue(outcome.stderr.contains("left out: shading (lights, materials), normals, plane tests (no planes)"), outcome.stderr)
+  }
+
+  func testReport_OneSceneMarkdownAndCSV() throws {
+    let outcome = try run([
+      "report", "scenes/single-sphere.txt", "--size", "16", "16", "--runs", "1",
+      "--csv", folder + "/r.csv", "--heatmaps", folder,
+    ])
+    XCTAssertEqual(outcome.status, 0, outcome.stderr)
+    let lines = outcome.stdout.split(separator: "\n")
+    XCTAssertEqual(lines.count, 2 + 4, outcome.stdout)
+    XCTAssertTrue(lines[2].hasPrefix("| single-sphere | float | naive |"), String(lines[2]))
+    let csv = String(decoding: try read("r.csv"), as: UTF8.self)
+    XCTAssertEqual(csv.split(separator: "\n").count, 5)
+    XCTAssertEqual(files().filter { $0.hasSuffix(".png") }.count, 4)
+  }
+}
