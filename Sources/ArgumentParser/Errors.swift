@@ -152,7 +152,8 @@ enum MessageInfo {
         message: "Internal error. Invalid state while parsing command-line arguments.",
         usage: usage, help: "")
     case .userValidationError(let error):
-      self = Self.userError(error, type: type, commandStack: commandStack, usage: usage, columns: columns)
+      self = Self.userError(
+        error, type: type, commandStack: commandStack, usage: usage, columns: columns)
     }
   }
 

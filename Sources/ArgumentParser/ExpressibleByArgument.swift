@@ -37,7 +37,8 @@ extension ExpressibleByArgument where Self: CaseIterable {
   }
 }
 
-extension ExpressibleByArgument where Self: CaseIterable, Self: RawRepresentable, RawValue == String {
+extension ExpressibleByArgument
+where Self: CaseIterable, Self: RawRepresentable, RawValue == String {
   public static var allValueStrings: [String] {
     allCases.map(\.rawValue)
   }

@@ -38,7 +38,8 @@ struct HelpGenerator {
 
     func rendered(screenWidth: Int) -> String {
       guard !elements.isEmpty else { return "" }
-      return title.uppercased() + ":\n" + elements.map { $0.rendered(screenWidth: screenWidth) }.joined()
+      let rendered = elements.map { $0.rendered(screenWidth: screenWidth) }
+      return title.uppercased() + ":\n" + rendered.joined()
     }
   }
 
@@ -131,7 +132,12 @@ struct HelpGenerator {
       elements: configuration.subcommands.compactMap { subcommand in
         guard subcommand.configuration.shouldDisplay else { return nil }
         var label = subcommand._commandName
-        if let defaultSubcommand = configuration.defaultSubcommand, subcommand == defaultSubcommand {
+        for alias in subcommand.configuration.aliases {
+          label += ", " + alias
+        }
+        if let defaultSubcommand = configuration.defaultSubcommand,
+          subcommand == defaultSubcommand
+        {
           label += " (default)"
         }
         return Section.Element(label: label, abstract: subcommand.configuration.abstract)

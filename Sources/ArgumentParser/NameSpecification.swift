@@ -55,7 +55,9 @@ public struct NameSpecification: ExpressibleByArrayLiteral, Sendable {
     [.short]
   }
 
-  public static func customShort(_ char: Character, allowingJoined: Bool = false) -> NameSpecification {
+  public static func customShort(
+    _ char: Character, allowingJoined: Bool = false
+  ) -> NameSpecification {
     [.customShort(char, allowingJoined: allowingJoined)]
   }
 

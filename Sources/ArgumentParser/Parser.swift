@@ -149,7 +149,8 @@ struct ArgumentReader {
     if token.hasPrefix("--") {
       let body = token.dropFirst(2)
       let name = body.prefix { $0 != "=" }
-      let attached = name.endIndex < body.endIndex ? String(body[body.index(after: name.endIndex)...]) : nil
+      let attached =
+        name.endIndex < body.endIndex ? String(body[body.index(after: name.endIndex)...]) : nil
       if let match = longNames[String(name)] { return .option(match, attached: attached) }
       return .unknown(.long(String(name)))
     }
@@ -271,7 +272,8 @@ struct ArgumentReader {
       guard case .option(let parsing) = definition.kind else {
         if let attached {
           throw ParseFailure(
-            "The option '\(match.name.synopsisString)' does not take any value, but '\(attached)' was specified.")
+            "The option '\(match.name.synopsisString)' does not take any value, "
+              + "but '\(attached)' was specified.")
         }
         flagUses[match.index, default: []].append((match.isOn, tokens[index]))
         return
@@ -311,7 +313,9 @@ struct ArgumentReader {
           }
         }
       case .upToNextOption:
-        while index + 1 < tokens.count, !taken.contains(index + 1), reader.isValue(tokens[index + 1]) {
+        while index + 1 < tokens.count, !taken.contains(index + 1),
+          reader.isValue(tokens[index + 1])
+        {
           index += 1
           record(tokens[index], at: index)
         }
@@ -349,7 +353,8 @@ struct ArgumentReader {
         case .exclusive?:
           if uses.count > 1 {
             throw ParseFailure(
-              "Value to be set with flag '\(uses[1].text)' had already been set with flag '\(uses[0].text)'")
+              "Value to be set with flag '\(uses[1].text)' "
+                + "had already been set with flag '\(uses[0].text)'")
           }
           definitions[index].sink.flag(uses.map(\.isOn))
         case .chooseFirst?:
@@ -468,8 +473,9 @@ struct ArgumentReader {
         }
         return ParseFailure("Missing one of: '\(names.joined(separator: "', '"))'")
       case .option:
+        let label = definition.label(for: definition.names.preferredName)
         return ParseFailure(
-          "Missing expected argument '\(definition.label(for: definition.names.preferredName))\(repeating)'",
+          "Missing expected argument '\(label)\(repeating)'",
           help: helpLine(definition, name: definition.names.first))
       case .positional:
         return ParseFailure(

@@ -210,6 +210,17 @@ public struct Option<Value>: CustomStringConvertible {
     self.declaration = declaration
   }
 
+  /// Never called: its presence makes the compiler accept a bare `@Option`
+  /// without parentheses and pick the matching initialiser from the
+  /// extensions, as in the real package.
+  @available(
+    *, unavailable,
+    message: "A default value must be provided unless the value type conforms to ExpressibleByArgument."
+  )
+  public init() {
+    fatalError("unavailable")
+  }
+
   public var wrappedValue: Value {
     get { storage.read(wrapper: "@Option") }
     set { storage = ArgumentStorage(newValue) }
@@ -322,6 +333,17 @@ public struct Argument<Value>: CustomStringConvertible {
     storage = ArgumentStorage(initial)
     self.parsing = parsing
     self.declaration = declaration
+  }
+
+  /// Never called: its presence makes the compiler accept a bare `@Argument`
+  /// without parentheses and pick the matching initialiser from the
+  /// extensions, as in the real package.
+  @available(
+    *, unavailable,
+    message: "A default value must be provided unless the value type conforms to ExpressibleByArgument."
+  )
+  public init() {
+    fatalError("unavailable")
   }
 
   public var wrappedValue: Value {
@@ -459,6 +481,14 @@ public struct Flag<Value>: CustomStringConvertible {
   let resolve: @Sendable ([Bool]) -> Value
   let initialIsOn: Bool?
 
+  /// Never called: its presence makes the compiler accept a bare `@Flag`
+  /// without parentheses and pick the matching initialiser from the
+  /// extensions, as in the real package.
+  @available(*, unavailable, message: "A flag's value must be Bool or Int.")
+  public init() {
+    fatalError("unavailable")
+  }
+
   public var wrappedValue: Value {
     get { storage.read(wrapper: "@Flag") }
     set { storage = ArgumentStorage(newValue) }
@@ -531,7 +561,8 @@ extension Flag where Value == Bool {
     exclusivity: FlagExclusivity = .chooseLast,
     help: ArgumentHelp? = nil
   ) {
-    self.init(initial: wrappedValue, name: name, inversion: inversion, exclusivity: exclusivity, help: help)
+    self.init(
+      initial: wrappedValue, name: name, inversion: inversion, exclusivity: exclusivity, help: help)
   }
 
   /// A flag whose name or inversion must be given.

@@ -19,8 +19,8 @@ struct Render: ParsableCommand {
 
       The original assignment's command line is accepted as is and implies \
       --style mit:
-        raytrace -input SCENE -size W H [-output FILE] [-normals FILE] \
-      [-depth MIN MAX FILE]
+        raytrace -input SCENE -size W H [-output FILE] [-normals FILE]
+                 [-depth MIN MAX FILE]
       """)
 
   @Argument(help: "The scene file, in the course's text format.")

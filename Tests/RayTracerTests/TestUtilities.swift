@@ -8,25 +8,6 @@ import XCTest
 
 // MARK: - Random numbers
 
-/// SplitMix64 (Steele, Lea and Flood, "Fast splittable pseudorandom number
-/// generators", OOPSLA 2014): one addition and two multiply-xorshifts per
-/// draw. Seedable, so that a failing case can be replayed from its seed.
-struct SplitMix64: RandomNumberGenerator {
-  private var state: UInt64
-
-  init(seed: UInt64) {
-    state = seed
-  }
-
-  mutating func next() -> UInt64 {
-    state &+= 0x9E37_79B9_7F4A_7C15
-    var z = state
-    z = (z ^ (z >> 30)) &* 0xBF58_476D_1CE4_E5B9
-    z = (z ^ (z >> 27)) &* 0x94D0_49BB_1331_11EB
-    return z ^ (z >> 31)
-  }
-}
-
 extension RandomNumberGenerator {
   /// A value whose logarithm is uniform in [log low, log high]: every binade
   /// between the bounds is equally likely, so small and large scales are

@@ -46,6 +46,15 @@ public enum Compensated {
   /// Σ terms, as if evaluated in twice the precision and rounded (Sum2).
   @inlinable
   public static func sum<S: RayScalar>(_ terms: [S]) -> S {
+    let pair = sumPair(terms)
+    return pair.sum + pair.error
+  }
+
+  /// Σ terms as an unevaluated pair sum + error with |error| ≤ ulp(sum)/2,
+  /// as if evaluated in twice the precision (Sum2 with its last addition
+  /// renormalised by twoSum).
+  @inlinable
+  public static func sumPair<S: RayScalar>(_ terms: [S]) -> (sum: S, error: S) {
     var total: S = 0
     var errors: S = 0
     for term in terms {
@@ -53,7 +62,27 @@ public enum Compensated {
       total = step.sum
       errors += step.error
     }
-    return total + errors
+    return twoSum(total, errors)
+  }
+
+  /// sum + error rounded once to the narrower type S, where S(sum + error)
+  /// would round twice: when sum lies exactly halfway between two S values,
+  /// the sign of `error` (not ties-to-even) decides. Elsewhere |error| ≤
+  /// ulp(sum)/2 cannot move sum across a midpoint of S, which lies a whole
+  /// ulp of Input away or more, so S(sum) is already correct.
+  @inlinable
+  public static func narrow<Input: RayScalar, S: RayScalar>(
+    _ sum: Input, _ error: Input, to _: S.Type = S.self
+  ) -> S {
+    let rounded = S(sum)
+    guard error != 0, rounded.isFinite else { return rounded }
+    let difference = sum - Input(rounded)
+    guard difference != 0 else { return rounded }
+    let neighbour = difference > 0 ? rounded.nextUp : rounded.nextDown
+    // The midpoint of two adjacent S values is exact in the wider Input.
+    let midpoint = (Input(rounded) + Input(neighbour)) / 2
+    guard sum == midpoint else { return rounded }
+    return (error > 0) == (difference > 0) ? neighbour : rounded
   }
 }
 
@@ -89,7 +118,7 @@ public enum CameraRelative {
     // Adding the large terms first keeps Sum2's error term small.
     terms.sort { $0.magnitude > $1.magnitude }
     let offset = Vector3<S>(
-      S(dx.sum) + S(dx.error), S(dy.sum) + S(dy.error), S(dz.sum) + S(dz.error))
+      narrowed(dx.sum, dx.error), narrowed(dy.sum, dy.error), narrowed(dz.sum, dz.error))
     return (offset, roundedSum(terms))
   }
 
@@ -118,6 +147,18 @@ public enum CameraRelative {
     if S.significandBitCount > Input.significandBitCount {
       return Compensated.sum(terms.map { S($0) })
     }
-    return S(Compensated.sum(terms))
+    let pair = Compensated.sumPair(terms)
+    return narrowed(pair.sum, pair.error)
+  }
+
+  /// sum + error (exact, |error| ≤ ulp(sum)/2) in S, rounded once.
+  static func narrowed<Input: RayScalar, S: RayScalar>(_ sum: Input, _ error: Input) -> S {
+    if S.significandBitCount > Input.significandBitCount {
+      return S(sum) + S(error)
+    }
+    if S.significandBitCount == Input.significandBitCount {
+      return S(sum + error)
+    }
+    return Compensated.narrow(sum, error)
   }
 }

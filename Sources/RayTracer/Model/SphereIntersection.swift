@@ -65,6 +65,12 @@ public enum SphereIntersection {
     if ac <= sSquared * 0.5 {
       quarterDiscriminant = sSquared - ac
     } else {
+      // Most rays miss most spheres, and a clear miss needs no accurate
+      // discriminant: both forms are within a few ε·a·|p|² of the truth
+      // (|p|² = c + r²), so below −32 ε·a·|p|² both are negative and the
+      // answer is the same as the careful form's, for a quarter of its cost.
+      let margin = 32 * S.ulpOfOne * a * (c + radiusSquared)
+      if sSquared - ac < -margin { return nil }
       let l = p - d * (s * inverseA)
       quarterDiscriminant = a * (radiusSquared - l.lengthSquared)
     }

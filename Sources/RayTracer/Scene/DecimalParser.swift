@@ -100,6 +100,9 @@ enum DecimalParser {
   /// Also where `inf` and `nan` are recognised, so that they can be reported
   /// as non-finite rather than as not-a-number-at-all.
   private static func slowPath(_ text: UnsafeBufferPointer<UInt8>) -> Double? {
-    Double(String(decoding: text, as: UTF8.self))
+    // The standard library reads a C string, which would end at a NUL
+    // byte and accept "inf\0junk" as infinity.
+    guard !text.contains(0) else { return nil }
+    return Double(String(decoding: text, as: UTF8.self))
   }
 }

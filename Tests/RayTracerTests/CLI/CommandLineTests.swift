@@ -77,7 +77,12 @@ final class CommandLineTests: XCTestCase {
   // MARK: - Help and usage errors
 
   func testHelp_DocumentsEveryOption() throws {
-    let outcome = try run(["--help"])
+    // As with swift-argument-parser, the root's help lists the subcommands
+    // and `render --help` the options of the default one.
+    let root = try run(["--help"])
+    XCTAssertEqual(root.status, 0)
+    XCTAssertTrue(root.stdout.contains("render (default)"), root.stdout)
+    let outcome = try run(["render", "--help"])
     XCTAssertEqual(outcome.status, 0)
     for option in [
       "--output", "--size", "--depth", "--depth-range", "--normals", "--style",

@@ -11,8 +11,10 @@ final class AtomicFileTests: XCTestCase {
 
   override func setUpWithError() throws {
     var template = Array("/tmp/raytrace-atomic-XXXXXX".utf8CString)
-    let made = template.withUnsafeMutableBufferPointer { mkdtemp($0.baseAddress) }
-    folder = String(cString: try XCTUnwrap(made))
+    let made = template.withUnsafeMutableBufferPointer { buffer in
+      buffer.baseAddress.flatMap { mkdtemp($0) }.map { String(cString: $0) }
+    }
+    folder = try XCTUnwrap(made, "mkdtemp failed")
   }
 
   override func tearDown() {
@@ -25,8 +27,8 @@ final class AtomicFileTests: XCTestCase {
     defer { closedir(directory) }
     var names: [String] = []
     while let entry = readdir(directory) {
-      let name = withUnsafeBytes(of: entry.pointee.d_name) {
-        String(cString: $0.bindMemory(to: CChar.self).baseAddress!)
+      let name = withUnsafeBytes(of: entry.pointee.d_name) { raw in
+        String(decoding: raw.prefix { $0 != 0 }, as: UTF8.self)
       }
       if name != "." && name != ".." { names.append(name) }
     }

@@ -1,0 +1,209 @@
+#if canImport(Glibc)
+import Glibc
+#elseif canImport(Darwin)
+import Darwin
+#endif
+
+/// One fixed workload of `raytrace bench`.
+public struct Workload: Sendable {
+  public enum Source: Sendable {
+    /// A scene file of the project, relative to its root.
+    case file(String)
+    /// `RandomSpheres` with this many spheres, written once to the data
+    /// folder.
+    case randomSpheres(Int)
+  }
+
+  public var name: String
+  public var source: Source
+  public var width: Int
+  public var height: Int
+  /// Nil: all cores.
+  public var threads: Int?
+  public var outputs: RenderOutputs
+
+  /// The workloads of the README's table: the course-like scene at two
+  /// sizes, random spheres from 100 to 10⁶, what leaving outputs out saves,
+  /// and one thread against all.
+  public static let standard: [Workload] = [
+    Workload(name: "course scene", source: .file("scenes/spheres.txt"), width: 800, height: 800, outputs: [.depth, .normals]),
+    Workload(name: "course scene", source: .file("scenes/spheres.txt"), width: 800, height: 800, outputs: [.depth, .normals, .shaded]),
+    Workload(name: "course scene", source: .file("scenes/spheres.txt"), width: 800, height: 800, threads: 1, outputs: [.depth, .normals, .shaded]),
+    Workload(name: "course scene", source: .file("scenes/spheres.txt"), width: 3840, height: 2160, outputs: [.depth, .normals, .shaded]),
+    Workload(name: "random spheres", source: .randomSpheres(100), width: 1920, height: 1080, outputs: [.depth, .normals]),
+    Workload(name: "random spheres", source: .randomSpheres(10_000), width: 1920, height: 1080, outputs: [.depth]),
+    Workload(name: "random spheres", source: .randomSpheres(10_000), width: 1920, height: 1080, outputs: [.depth, .normals]),
+    Workload(name: "random spheres", source: .randomSpheres(10_000), width: 1920, height: 1080, outputs: [.depth, .normals, .shaded]),
+    Workload(name: "random spheres", source: .randomSpheres(10_000), width: 1920, height: 1080, threads: 1, outputs: [.depth, .normals]),
+    Workload(name: "random spheres", source: .randomSpheres(1_000_000), width: 1920, height: 1080, outputs: [.depth, .normals]),
+  ]
+
+  public init(
+    name: String, source: Source, width: Int, height: Int, threads: Int? = nil,
+    outputs: RenderOutputs
+  ) {
+    self.name = name
+    self.source = source
+    self.width = width
+    self.height = height
+    self.threads = threads
+    self.outputs = outputs
+  }
+
+  public var objectsDescription: String {
+    switch source {
+    case .file: "7"
+    case .randomSpheres(let count): "\(count)"
+    }
+  }
+}
+
+/// One measured row.
+public struct BenchmarkResult: Sendable {
+  public var workload: Workload
+  public var scenePath: String
+  public var threads: Int
+  /// Median render time (the `render:` line of `--stats`) over the runs.
+  public var renderSeconds: Double
+  /// Median wall time of the whole process: parse, build, render, write.
+  public var endToEndSeconds: Double
+  /// The largest resident set of any run, in bytes.
+  public var peakBytes: Int
+
+  public var megaraysPerSecond: Double {
+    Double(workload.width * workload.height) / renderSeconds / 1e6
+  }
+}
+
+/// Runs workloads as separate processes of the `raytrace` executable, so
+/// that each one's peak memory is its own (`wait4`'s resource usage) and the
+/// end-to-end time is what a user waits for.
+public struct Benchmark {
+  public var executable: String
+  public var dataFolder: String
+  public var runs: Int
+
+  public init(executable: String, dataFolder: String, runs: Int) {
+    self.executable = executable
+    self.dataFolder = dataFolder
+    self.runs = runs
+  }
+
+  public struct Failure: Error, CustomStringConvertible {
+    public var description: String
+  }
+
+  /// The scene file for `workload`, writing a random scene on first use.
+  public func scenePath(for workload: Workload) throws -> String {
+    switch workload.source {
+    case .file(let path):
+      return path
+    case .randomSpheres(let count):
+      let path = "\(dataFolder)/random-\(count).txt"
+      if access(path, R_OK) != 0 {
+        mkdir(dataFolder, 0o755)
+        do {
+          try AtomicFile.write(Array(RandomSpheres.sceneText(count: count).utf8), to: path)
+        } catch {
+          throw Failure(description: "cannot write the benchmark scene: \(error)")
+        }
+      }
+      return path
+    }
+  }
+
+  /// One warm-up run (file cache, page faults), then `runs` timed ones.
+  public func measure(_ workload: Workload) throws -> BenchmarkResult {
+    let scene = try scenePath(for: workload)
+    let threads = workload.threads ?? Renderer.availableCores
+    var arguments = [
+      scene, "--size", "\(workload.width)", "\(workload.height)",
+      "--threads", "\(threads)", "--stats",
+    ]
+    let outputFolder = dataFolder + "/out"
+    mkdir(dataFolder, 0o755)
+    mkdir(outputFolder, 0o755)
+    if workload.outputs.contains(.depth) { arguments += ["--depth", outputFolder + "/depth.png"] }
+    if workload.outputs.contains(.normals) {
+      arguments += ["--normals", outputFolder + "/normals.png"]
+    }
+    if workload.outputs.contains(.shaded) { arguments += ["-o", outputFolder + "/shaded.png"] }
+    var renderTimes: [Double] = []
+    var wallTimes: [Double] = []
+    var peak = 0
+    for run in 0...runs {
+      let outcome = try Self.spawn(executable, arguments)
+      guard outcome.status == 0 else {
+        throw Failure(
+          description: "\(executable) \(arguments.joined(separator: " ")) failed: \(outcome.stderr)")
+      }
+      guard let seconds = Self.renderSeconds(inStats: outcome.stderr) else {
+        throw Failure(description: "no 'render:' line in the output of \(executable)")
+      }
+      peak = max(peak, outcome.peakBytes)
+      if run > 0 {
+        renderTimes.append(seconds)
+        wallTimes.append(outcome.wallSeconds)
+      }
+    }
+    return BenchmarkResult(
+      workload: workload, scenePath: scene, threads: threads,
+      renderSeconds: median(renderTimes), endToEndSeconds: median(wallTimes),
+      peakBytes: peak)
+  }
+
+  /// The seconds of a `render: 0.1234 s, 45.6 Mrays/s` line.
+  static func renderSeconds(inStats text: String) -> Double? {
+    for line in text.split(separator: "\n") where line.hasPrefix("render: ") {
+      let value = line.dropFirst("render: ".count).prefix { $0 != " " }
+      return Double(value)
+    }
+    return nil
+  }
+
+  struct Outcome {
+    var status: Int32
+    var stderr: String
+    var wallSeconds: Double
+    var peakBytes: Int
+  }
+
+  /// Runs a child with standard error captured, and its resource usage.
+  static func spawn(_ executable: String, _ arguments: [String]) throws -> Outcome {
+    var pipe: [Int32] = [0, 0]
+    guard Glibc.pipe(&pipe) == 0 else { throw Failure(description: "pipe failed") }
+    var actions = posix_spawn_file_actions_t()
+    posix_spawn_file_actions_init(&actions)
+    defer { posix_spawn_file_actions_destroy(&actions) }
+    posix_spawn_file_actions_adddup2(&actions, pipe[1], 2)
+    posix_spawn_file_actions_addclose(&actions, pipe[0])
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0)
+    let argv = ([executable] + arguments).map { strdup($0) } + [nil]
+    defer { argv.forEach { free($0) } }
+    var clock = Stopwatch()
+    var child: pid_t = 0
+    let status = posix_spawn(&child, executable, &actions, nil, argv, environ)
+    close(pipe[1])
+    guard status == 0 else {
+      close(pipe[0])
+      throw Failure(description: "cannot start \(executable): \(String(cString: strerror(status)))")
+    }
+    var captured: [UInt8] = []
+    var buffer = [UInt8](repeating: 0, count: 4096)
+    while true {
+      let count = read(pipe[0], &buffer, buffer.count)
+      if count <= 0 { break }
+      captured += buffer[0..<count]
+    }
+    close(pipe[0])
+    var usage = rusage()
+    var exit: Int32 = 0
+    while wait4(child, &exit, 0, &usage) < 0 && errno == EINTR {}
+    let wall = clock.lap()
+    // ru_maxrss is in kilobytes on Linux.
+    return Outcome(
+      status: (exit & 0x7F) == 0 ? (exit >> 8) & 0xFF : 128 + (exit & 0x7F),
+      stderr: String(decoding: captured, as: UTF8.self), wallSeconds: wall,
+      peakBytes: Int(usage.ru_maxrss) * 1024)
+  }
+}

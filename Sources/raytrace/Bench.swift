@@ -1,0 +1,67 @@
+import ArgumentParser
+import RayTracer
+
+#if canImport(Glibc)
+import Glibc
+#endif
+
+/// `raytrace bench`: the fixed workloads of the README's performance table.
+struct Bench: ParsableCommand {
+  static let configuration = CommandConfiguration(
+    commandName: "bench",
+    abstract: "Time the fixed benchmark workloads and print a Markdown table.",
+    discussion: """
+      Each workload runs as its own raytrace process: one warm-up, then \
+      --runs timed runs. 'render' is the median of the --stats render time \
+      (rendering only), 'end to end' the median wall time of the process \
+      (parse, build, render, write PNGs), 'peak memory' the largest resident \
+      set. The random scenes are written to --data on first use; run from \
+      the project's root.
+      """)
+
+  @Option(help: "Timed runs per workload, after one warm-up.")
+  var runs: Int = 5
+
+  @Option(help: ArgumentHelp("Folder for generated scenes and images.", valueName: "dir"))
+  var data: String = ".build/bench"
+
+  @Flag(help: "Skip the 1,000,000-sphere and 3840x2160 workloads.")
+  var quick = false
+
+  mutating func validate() throws {
+    guard runs >= 1 else { throw ValidationError("--runs must be at least 1.") }
+  }
+
+  func run() throws {
+    let benchmark = Benchmark(
+      executable: currentExecutable(), dataFolder: data, runs: runs)
+    print("| workload | size | objects | threads | outputs | render (ms) | Mrays/s | end to end (s) | peak memory (MiB) |")
+    print("|---|---|---:|---:|---|---:|---:|---:|---:|")
+    for workload in Workload.standard {
+      if quick && (workload.width * workload.height > 1920 * 1080 || workload.objectsDescription == "1000000") {
+        continue
+      }
+      do {
+        let result = try benchmark.measure(workload)
+        print(
+          "| \(workload.name) | \(workload.width)×\(workload.height) | \(workload.objectsDescription) | "
+            + "\(result.threads) | \(workload.outputs.names.joined(separator: " + ")) | "
+            + "\(formatted(result.renderSeconds * 1000, digits: 3)) | "
+            + "\(formatted(result.megaraysPerSecond, digits: 3)) | "
+            + "\(formatted(result.endToEndSeconds, digits: 3)) | "
+            + "\(formatted(Double(result.peakBytes) / 1_048_576, digits: 3)) |")
+      } catch {
+        printError("raytrace: error: \(error)")
+        throw ExitCode.failure
+      }
+    }
+  }
+
+  /// This very executable, so that the benchmark times the build it ships in.
+  private func currentExecutable() -> String {
+    var buffer = [CChar](repeating: 0, count: 4096)
+    let length = readlink("/proc/self/exe", &buffer, buffer.count - 1)
+    guard length > 0 else { return CommandLine.arguments[0] }
+    return String(decoding: buffer[0..<length].map { UInt8(bitPattern: $0) }, as: UTF8.self)
+  }
+}
