@@ -113,10 +113,10 @@ struct Render: ParsableCommand {
       guard size.count == 2 else {
         throw ValidationError("--size takes two values, W and H; got \(size.count).")
       }
-      guard (1...32768).contains(size[0]), (1...32768).contains(size[1]) else {
-        throw ValidationError("--size needs W and H between 1 and 32768; got \(size[0]) \(size[1]).")
-      }
       (width, height) = (size[0], size[1])
+      guard width >= 1, height >= 1 else {
+        throw ValidationError("--size needs W and H of at least 1; got \(width) \(height).")
+      }
     }
     var range: ClosedRange<Double>?
     var depthPath = depth
@@ -156,6 +156,7 @@ struct Render: ParsableCommand {
     guard Set(files.map(\.path)).count == files.count else {
       throw ValidationError("Two outputs name the same file.")
     }
+    try checkMemory(width: width, height: height, outputs: files.map(\.kind))
     if let threads, threads < 1 {
       throw ValidationError("--threads must be at least 1; got \(threads).")
     }
@@ -167,6 +168,32 @@ struct Render: ParsableCommand {
       style: style ?? (input != nil ? .mit : .course), method: intersection,
       precision: precision, threads: threads ?? Renderer.availableCores)
     return Plan(scenePath: scenePath, settings: settings, files: files, depthRange: range)
+  }
+
+  /// The largest image: 32768 on a side and 2²⁸ pixels (the buffers of a
+  /// double render with every output are then about 17 GiB).
+  static let maximumSide = 32768
+  static let maximumPixels = 1 << 28
+
+  /// Refuses, before anything is allocated, an image whose buffers would
+  /// not fit, saying how much memory it would need.
+  private func checkMemory(width: Int, height: Int, outputs: [RenderOutputs]) throws {
+    let (pixels, overflow) = width.multipliedReportingOverflow(by: height)
+    guard overflow || width > Self.maximumSide || height > Self.maximumSide
+      || pixels > Self.maximumPixels
+    else { return }
+    let all = outputs.reduce(into: RenderOutputs()) { $0.formUnion($1) }
+    let scalar = precision == .float ? 4.0 : 8.0
+    // Raw buffers (t, normal, colour) plus each 8-bit image and its PNG.
+    var perPixel = 0.0
+    if all.contains(.depth) { perPixel += scalar + 6 }
+    if all.contains(.normals) { perPixel += 3 * scalar + 6 }
+    if all.contains(.shaded) { perPixel += 3 * scalar + 6 }
+    let bytes = Double(width) * Double(height) * perPixel
+    throw ValidationError(
+      "--size \(width) \(height) would need about \(formatted(bytes / 1_073_741_824, digits: 3)) GiB "
+        + "of memory; the limit is \(Self.maximumSide) pixels on a side and "
+        + "\(Self.maximumPixels) pixels in all.")
   }
 
   private func checkedRange(_ low: Double, _ high: Double, option: String) throws -> ClosedRange<Double> {
