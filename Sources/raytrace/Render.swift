@@ -224,9 +224,15 @@ struct Render: ParsableCommand {
     png.compressionLevel = Int32(pngLevel)
     let report: RenderReport
     do {
+      let bar = ProgressBar(rows: plan.settings.height)
+      defer { bar?.finish() }
+      var progress: (@Sendable (Int) -> Void)?
+      if let bar {
+        progress = { finished in bar.update(finished) }
+      }
       report = try RenderJob.run(
         scene: scene, settings: plan.settings, files: plan.files,
-        depthRange: plan.depthRange, png: png)
+        depthRange: plan.depthRange, png: png, progress: progress)
     } catch {
       printError("raytrace: error: \(error)")
       throw ExitCode.failure

@@ -151,7 +151,8 @@ public struct Stopwatch {
     return now - last
   }
 
-  static func now() -> Double {
+  /// Seconds on the monotonic clock since an arbitrary start.
+  public static func now() -> Double {
     var time = timespec()
     clock_gettime(CLOCK_MONOTONIC, &time)
     return Double(time.tv_sec) + Double(time.tv_nsec) * 1e-9
