@@ -45,7 +45,8 @@ public enum Compensated {
 
   /// Σ terms, as if evaluated in twice the precision and rounded (Sum2).
   @inlinable
-  public static func sum<S: RayScalar>(_ terms: [S]) -> S {
+  public static func sum<Terms: Sequence>(_ terms: Terms) -> Terms.Element
+  where Terms.Element: RayScalar {
     let pair = sumPair(terms)
     return pair.sum + pair.error
   }
@@ -54,9 +55,11 @@ public enum Compensated {
   /// as if evaluated in twice the precision (Sum2 with its last addition
   /// renormalised by twoSum).
   @inlinable
-  public static func sumPair<S: RayScalar>(_ terms: [S]) -> (sum: S, error: S) {
-    var total: S = 0
-    var errors: S = 0
+  public static func sumPair<Terms: Sequence>(
+    _ terms: Terms
+  ) -> (sum: Terms.Element, error: Terms.Element) where Terms.Element: RayScalar {
+    var total: Terms.Element = 0
+    var errors: Terms.Element = 0
     for term in terms {
       let step = twoSum(total, term)
       total = step.sum
@@ -103,23 +106,32 @@ public enum CameraRelative {
     let dx = Compensated.twoSum(center.x, -eye.x)
     let dy = Compensated.twoSum(center.y, -eye.y)
     let dz = Compensated.twoSum(center.z, -eye.z)
-    var terms: [Input] = []
-    terms.reserveCapacity(13)
-    for d in [dx, dy, dz] {
-      let square = Compensated.twoProduct(d.sum, d.sum)
-      terms.append(square.product)
-      terms.append(square.error)
-      terms.append(2 * d.sum * d.error)
-      terms.append(d.error * d.error)
-    }
     let radiusSquared = Compensated.twoProduct(radius, radius)
-    terms.append(-radiusSquared.product)
-    terms.append(-radiusSquared.error)
-    // Adding the large terms first keeps Sum2's error term small.
-    terms.sort { $0.magnitude > $1.magnitude }
     let offset = Vector3<S>(
       narrowed(dx.sum, dx.error), narrowed(dy.sum, dy.error), narrowed(dz.sum, dz.error))
-    return (offset, roundedSum(terms))
+    // On the stack: this runs once per sphere, a million times for the
+    // largest scenes.
+    let c: S = withUnsafeTemporaryAllocation(of: Input.self, capacity: 14) { terms in
+      var count = 0
+      func append(_ term: Input) {
+        terms[count] = term
+        count += 1
+      }
+      func appendSquare(_ d: (sum: Input, error: Input)) {
+        let square = Compensated.twoProduct(d.sum, d.sum)
+        append(square.product)
+        append(square.error)
+        append(2 * d.sum * d.error)
+        append(d.error * d.error)
+      }
+      appendSquare(dx)
+      appendSquare(dy)
+      appendSquare(dz)
+      append(-radiusSquared.product)
+      append(-radiusSquared.error)
+      return roundedSum(UnsafeMutableBufferPointer(rebasing: terms[0..<count]))
+    }
+    return (offset, c)
   }
 
   /// k = offset − n·eye, the signed distance from the eye to the plane
@@ -131,21 +143,21 @@ public enum CameraRelative {
     let px = Compensated.twoProduct(normal.x, eye.x)
     let py = Compensated.twoProduct(normal.y, eye.y)
     let pz = Compensated.twoProduct(normal.z, eye.z)
-    var terms = [
-      offset, -px.product, -px.error, -py.product, -py.error,
-      -pz.product, -pz.error,
-    ]
-    terms.sort { $0.magnitude > $1.magnitude }
-    return roundedSum(terms)
+    // Planes are few: an array is fine here.
+    var terms = [offset, -px.product, -px.error, -py.product, -py.error, -pz.product, -pz.error]
+    return terms.withUnsafeMutableBufferPointer { roundedSum($0) }
   }
 
   /// The sum of exact terms, rounded once to S: Sum2 in the input type, or
   /// in S itself when S is wider (the Float80 reference from Double input).
   static func roundedSum<Input: RayScalar, S: RayScalar>(
-    _ terms: [Input]
+    _ terms: UnsafeMutableBufferPointer<Input>
   ) -> S {
+    var terms = terms
+    // Adding the large terms first keeps Sum2's error term small.
+    terms.sort { $0.magnitude > $1.magnitude }
     if S.significandBitCount > Input.significandBitCount {
-      return Compensated.sum(terms.map { S($0) })
+      return Compensated.sum(terms.lazy.map { S($0) })
     }
     let pair = Compensated.sumPair(terms)
     return narrowed(pair.sum, pair.error)

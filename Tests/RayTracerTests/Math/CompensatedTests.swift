@@ -207,7 +207,8 @@ final class CompensatedTests: XCTestCase {
       center: Vector3<Double>(1 + 0x1p-24, 0, 0), radius: 0.5,
       eye: Vector3(-0x1p-60, 0, 0), as: Float.self)
     XCTAssertEqual(relative.offset.x, 1 + 0x1p-23, "offset, rounded once")
-    let c: Float = CameraRelative.roundedSum([1 + 0x1p-24, 0x1p-60] as [Double])
+    var terms: [Double] = [1 + 0x1p-24, 0x1p-60]
+    let c: Float = terms.withUnsafeMutableBufferPointer { CameraRelative.roundedSum($0) }
     XCTAssertEqual(c, 1 + 0x1p-23, "Sum2, rounded once")
   }
 
