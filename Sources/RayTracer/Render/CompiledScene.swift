@@ -43,9 +43,8 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     ambient = Vector3(scene.ambient)
     background = Vector3(scene.background)
     if spheres.count >= hierarchyThreshold {
-      let bounds = spheres.map(Kernel.centerAndRadius)
       let bvh = BoundingVolumeHierarchy(
-        centers: bounds.map(\.0), radii: bounds.map(\.1))
+        spheres: spheres, kernel: Kernel.self, rayOrigin: rayOrigin)
       spheres = bvh.order.map { spheres[Int($0)] }
       sphereMaterials = bvh.order.map { sphereMaterials[Int($0)] }
       hierarchy = bvh

@@ -35,14 +35,19 @@ public enum Renderer {
     let count = width * height
     let outputs = settings.outputs
     let camera = PerspectiveCamera<RayPrecision>(scene.camera)
-    var depth = outputs.contains(.depth) ? [S](repeating: 0, count: count) : []
-    var normals =
-      outputs.contains(.normals) ? [Vector3<S>](repeating: .zero, count: count) : []
-    var color =
-      outputs.contains(.shaded) ? [RGB<S>](repeating: .zero, count: count) : []
-    depth.withUnsafeMutableBufferPointer { depth in
-      normals.withUnsafeMutableBufferPointer { normals in
-        color.withUnsafeMutableBufferPointer { color in
+    // Left uninitialised: every pixel of every requested buffer is written
+    // exactly once below, so zeroing them first would only cost a pass
+    // over memory on one thread.
+    var normals: [Vector3<S>] = []
+    var color: [RGB<S>] = []
+    let depth = uninitializedArray(of: S.self, count: outputs.contains(.depth) ? count : 0) {
+      depth in
+      normals = uninitializedArray(
+        of: Vector3<S>.self, count: outputs.contains(.normals) ? count : 0
+      ) { normals in
+        color = uninitializedArray(
+          of: RGB<S>.self, count: outputs.contains(.shaded) ? count : 0
+        ) { color in
           let targets = Targets(depth: depth, normals: normals, color: color)
           forEachRowBatch(
             rows: height, threads: settings.threads, progress: progress
@@ -56,6 +61,16 @@ public enum Renderer {
     }
     return RenderBuffers(
       width: width, height: height, depth: depth, normals: normals, color: color)
+  }
+
+  /// An array of `count` elements that `initialize` must write, every one.
+  private static func uninitializedArray<T>(
+    of _: T.Type, count: Int, _ initialize: (UnsafeMutableBufferPointer<T>) -> Void
+  ) -> [T] {
+    Array(unsafeUninitializedCapacity: count) { buffer, initializedCount in
+      initialize(buffer)
+      initializedCount = count
+    }
   }
 
   /// Disjoint rows of these buffers are written by different threads.
