@@ -53,7 +53,20 @@ public struct PerspectiveCamera<Scalar: RayScalar>: Hashable, Sendable {
   /// The unit direction through screen point (x, y); `aspect` is H / W.
   @inlinable
   public func rayDirection(x: Scalar, y: Scalar, aspect: Scalar) -> Vector3<Scalar> {
-    (horizontal * x + up * (aspect * y) + direction * focalDistance).normalized()
+    rayDirection(x: x, rowBase: rowBase(y: y, aspect: aspect))
+  }
+
+  /// The part of the ray direction shared by a row of pixels:
+  /// (H/W)·y·v + D·w.
+  @inlinable
+  public func rowBase(y: Scalar, aspect: Scalar) -> Vector3<Scalar> {
+    up * (aspect * y) + direction * focalDistance
+  }
+
+  /// The unit direction through screen x on the row of `rowBase`.
+  @inlinable
+  public func rayDirection(x: Scalar, rowBase: Vector3<Scalar>) -> Vector3<Scalar> {
+    (horizontal * x + rowBase).normalizedByReciprocal()
   }
 }
 

@@ -11,7 +11,7 @@ public enum SphereIntersection {
   /// It fails in three known ways: b² − 4ac cancels for a small far sphere
   /// (every digit lost once L/r ≳ ε^(−1/2)); −b + √Δ cancels for the far root;
   /// and c = |f|² − r² cancels for a huge sphere seen from close by.
-  @inlinable
+  @inlinable @inline(__always)
   public static func naiveRoot<S: RayScalar>(
     origin: Vector3<S>, direction: Vector3<S>,
     center: Vector3<S>, radius: S, after tMin: S, before tMax: S
@@ -44,7 +44,7 @@ public enum SphereIntersection {
   /// - Returns: the nearest root in (tMin, tMax) and whether it is the
   ///   smaller root, where the ray enters the sphere; nil on a miss,
   ///   including a tangent ray whose double root lies outside the interval.
-  @inlinable
+  @inlinable @inline(__always)
   public static func stableRoot<S: RayScalar>(
     direction d: Vector3<S>, lengthSquared a: S, inverseLengthSquared inverseA: S,
     offset p: Vector3<S>, c: S, radiusSquared: S,
@@ -102,7 +102,7 @@ public enum SphereIntersection {
     let along = (Swift.max(radiusSquared - l.lengthSquared, 0) * inverseA)
       .squareRoot()
     let side: S = entering ? -1 : 1
-    return (d * (side * along) - l).normalized()
+    return (d * (side * along) - l).normalizedByReciprocal()
   }
 
   /// The course's normal: (o + t·d − centre), normalised.

@@ -739,7 +739,10 @@ extension BoundingVolumeHierarchy {
     @inline(__always)
     init(_ ray: CameraRay<Scalar>) {
       origin = ray.origin
-      inverse = ray.inverseDirection
+      // Computed here, not per camera ray: scenes without a hierarchy never
+      // pay the three divisions.
+      let direction = ray.direction
+      inverse = Vector3(1 / direction.x, 1 / direction.y, 1 / direction.z)
       // The sign bit, so that −0 (inverse −∞) counts as negative.
       negative = (
         inverse.x.sign == .minus, inverse.y.sign == .minus,

@@ -8,8 +8,6 @@ public struct CameraRay<Scalar: RayScalar>: Sendable {
   /// exactly unit.
   public var lengthSquared: Scalar
   public var inverseLengthSquared: Scalar
-  /// 1 / d per component (±inf for a zero component), for box tests.
-  public var inverseDirection: Vector3<Scalar>
 
   @inlinable
   public init(origin: Vector3<Scalar>, direction: Vector3<Scalar>) {
@@ -17,7 +15,6 @@ public struct CameraRay<Scalar: RayScalar>: Sendable {
     self.direction = direction
     lengthSquared = direction.lengthSquared
     inverseLengthSquared = 1 / lengthSquared
-    inverseDirection = Vector3(1 / direction.x, 1 / direction.y, 1 / direction.z)
   }
 }
 
@@ -83,6 +80,7 @@ public enum NaiveKernel<Scalar: RayScalar>: IntersectionKernel {
     (record.center, record.radius)
   }
 
+  @inline(__always)
   public static func intersect(
     _ record: SphereRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
   ) -> Scalar? {
@@ -91,6 +89,7 @@ public enum NaiveKernel<Scalar: RayScalar>: IntersectionKernel {
       radius: record.radius, after: 0, before: tMax)
   }
 
+  @inline(__always)
   public static func normal(
     _ record: SphereRecord, _ ray: CameraRay<Scalar>, t: Scalar
   ) -> Vector3<Scalar> {
@@ -98,6 +97,7 @@ public enum NaiveKernel<Scalar: RayScalar>: IntersectionKernel {
       origin: ray.origin, direction: ray.direction, center: record.center, t: t)
   }
 
+  @inline(__always)
   public static func intersect(
     _ record: PlaneRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
   ) -> Scalar? {
@@ -165,6 +165,7 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
     (record.offset, record.radiusSquared.squareRoot())
   }
 
+  @inline(__always)
   public static func intersect(
     _ record: SphereRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
   ) -> Scalar? {
@@ -178,6 +179,7 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
   /// Camera rays start at t = 0, so the root hit is the entering one exactly
   /// when the eye is outside the sphere (c > 0): with c < 0 the smaller root
   /// is negative, and with c = 0 it is zero, which is not > 0.
+  @inline(__always)
   public static func normal(
     _ record: SphereRecord, _ ray: CameraRay<Scalar>, t: Scalar
   ) -> Vector3<Scalar> {
@@ -187,6 +189,7 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
       entering: record.c > 0)
   }
 
+  @inline(__always)
   public static func intersect(
     _ record: PlaneRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
   ) -> Scalar? {

@@ -49,11 +49,19 @@ public enum Renderer {
           of: RGB<S>.self, count: outputs.contains(.shaded) ? count : 0
         ) { color in
           let targets = Targets(depth: depth, normals: normals, color: color)
-          forEachRowBatch(
-            rows: height, threads: settings.threads, progress: progress
-          ) { rows in
-            for row in rows {
-              renderRow(row, scene, camera, settings, targets)
+          // Screen x per column, once per render rather than a division
+          // per pixel.
+          let columns = (0..<width).map { column -> RayPrecision in
+            settings.style.screenX(column: column, width: width)
+          }
+          columns.withUnsafeBufferPointer { buffer in
+            let columns = SharedColumns(buffer: buffer)
+            forEachRowBatch(
+              rows: height, threads: settings.threads, progress: progress
+            ) { rows in
+              for row in rows {
+                renderRow(row, columns.buffer, scene, camera, settings, targets)
+              }
             }
           }
         }
@@ -73,6 +81,11 @@ public enum Renderer {
     }
   }
 
+  /// Read by every worker, written by none.
+  private struct SharedColumns<R>: @unchecked Sendable {
+    let buffer: UnsafeBufferPointer<R>
+  }
+
   /// Disjoint rows of these buffers are written by different threads.
   private struct Targets<S: RayScalar>: @unchecked Sendable {
     let depth: UnsafeMutableBufferPointer<S>
@@ -81,21 +94,22 @@ public enum Renderer {
   }
 
   private static func renderRow<Kernel: IntersectionKernel, R: RayScalar>(
-    _ row: Int, _ scene: CompiledScene<Kernel>, _ camera: PerspectiveCamera<R>,
-    _ settings: RenderSettings, _ targets: Targets<Kernel.Scalar>
+    _ row: Int, _ columns: UnsafeBufferPointer<R>, _ scene: CompiledScene<Kernel>,
+    _ camera: PerspectiveCamera<R>, _ settings: RenderSettings,
+    _ targets: Targets<Kernel.Scalar>
   ) {
     typealias S = Kernel.Scalar
     let width = settings.width
     let style = settings.style
     let aspect = R(settings.height) / R(width)
     let y: R = style.screenY(row: row, height: settings.height)
+    let rowBase = camera.rowBase(y: y, aspect: aspect)
     let wantsDepth = targets.depth.count > 0
     let wantsNormals = targets.normals.count > 0
     let wantsColor = targets.color.count > 0
     let attenuate = style == .mit
     for column in 0..<width {
-      let x: R = style.screenX(column: column, width: width)
-      let direction = Vector3<S>(camera.rayDirection(x: x, y: y, aspect: aspect))
+      let direction = Vector3<S>(camera.rayDirection(x: columns[column], rowBase: rowBase))
       let ray = CameraRay(origin: scene.rayOrigin, direction: direction)
       let pixel = row * width + column
       guard let hit = scene.nearest(ray) else {
