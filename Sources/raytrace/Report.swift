@@ -1,6 +1,12 @@
 import ArgumentParser
 import RayTracer
 
+#if canImport(Glibc)
+import Glibc
+#elseif canImport(Darwin)
+import Darwin
+#endif
+
 /// `raytrace report`: error against run time for every precision and method.
 struct Report: ParsableCommand {
   static let configuration = CommandConfiguration(
@@ -120,7 +126,10 @@ struct Report: ParsableCommand {
     return name
   }
 
+  /// Creates the folder when it does not exist yet (its parent must), then
+  /// checks that files can be written in it.
   private func checkOutputFolder(_ folder: String) throws {
+    mkdir(folder, 0o755)
     try checked { () throws(OutputError) in try AtomicFile.checkWritable(folder + "/.probe") }
   }
 

@@ -54,7 +54,7 @@ extension Sphere: Intersectable {
       let normal = SphereIntersection.stableNormal(
         direction: ray.direction, inverseLengthSquared: inverseA,
         offset: relative.offset, radiusSquared: radiusSquared,
-        entering: root.entering)
+        inverseRadius: 1 / radius, entering: root.entering)
       return Hit(t: root.t, normal: normal, materialIndex: materialIndex)
     }
   }
