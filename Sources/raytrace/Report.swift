@@ -24,7 +24,7 @@ struct Report: ParsableCommand {
   var scenes: [String] = []
 
   @Option(parsing: .upToNextOption, help: ArgumentHelp("Image width and height.", valueName: "w h"))
-  var size: [Int] = [200, 200]
+  var size: [Int] = [400, 400]
 
   @Option(help: "Timed renders per row, after one warm-up.")
   var runs: Int = 5
@@ -105,8 +105,9 @@ struct Report: ParsableCommand {
       let text = ([AccuracyRow.csvHeader] + rows.map(\.csv)).joined(separator: "\n") + "\n"
       try checked { () throws(OutputError) in try AtomicFile.write(Array(text.utf8), to: csv) }
     }
-    if !encodedMaps.isEmpty {
-      try checked { () throws(OutputError) in try AtomicFile.writeAll(encodedMaps) }
+    // Each heatmap is a file of its own, whole or absent.
+    for map in encodedMaps {
+      try checked { () throws(OutputError) in try AtomicFile.write(map.bytes, to: map.path) }
     }
   }
 

@@ -629,6 +629,27 @@ extension BoundingVolumeHierarchy {
 
 // MARK: - Traversal
 
+/// The primitives in a hierarchy's leaves, as one ray tests them: a
+/// concrete type per primitive kind, so that traversal is specialised for
+/// each and calls no closure.
+protocol LeafPrimitives {
+  associatedtype Scalar: RayScalar
+  /// The hit t in (0, tMax) of the primitive at `position`, or nil.
+  func intersect(_ position: Int, before tMax: Scalar) -> Scalar?
+}
+
+/// Spheres as a kernel stores them, tested against one camera ray.
+struct SphereLeaves<Kernel: IntersectionKernel>: LeafPrimitives {
+  typealias Scalar = Kernel.Scalar
+  let records: UnsafeBufferPointer<Kernel.SphereRecord>
+  let ray: CameraRay<Kernel.Scalar>
+
+  @inline(__always)
+  func intersect(_ position: Int, before tMax: Scalar) -> Scalar? {
+    Kernel.intersect(records[position], ray, before: tMax)
+  }
+}
+
 extension BoundingVolumeHierarchy {
   /// The nearest sphere hit in (0, tMax): its t and its position in
   /// `records`, which must be stored in `order`.
@@ -639,6 +660,14 @@ extension BoundingVolumeHierarchy {
     _ ray: CameraRay<Scalar>, before tMax: Scalar,
     records: UnsafeBufferPointer<Kernel.SphereRecord>, kernel: Kernel.Type
   ) -> (t: Scalar, index: Int)? where Kernel.Scalar == Scalar {
+    nearest(ray, before: tMax, leaves: SphereLeaves<Kernel>(records: records, ray: ray))
+  }
+
+  /// The nearest hit in (0, tMax) among primitives tested by `leaves`,
+  /// stored in `order`: its t and its position.
+  func nearest<Leaves: LeafPrimitives>(
+    _ ray: CameraRay<Scalar>, before tMax: Scalar, leaves: Leaves
+  ) -> (t: Scalar, index: Int)? where Leaves.Scalar == Scalar {
     guard !nodes.isEmpty else { return nil }
     let slab = Slab(ray)
     var tBest = tMax
@@ -669,9 +698,7 @@ extension BoundingVolumeHierarchy {
               if node.isLeaf {
                 let first = Int(node.index)
                 for position in first..<(first + Int(node.count)) {
-                  guard
-                    let t = Kernel.intersect(
-                      records[position], ray, before: limit)
+                  guard let t = leaves.intersect(position, before: limit)
                   else { continue }
                   let original = order[position]
                   if t < tBest || (t == tBest && original < bestOriginal) {
