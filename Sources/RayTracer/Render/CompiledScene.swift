@@ -14,6 +14,12 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   var planeMaterials: [Int32]
   /// Nil for scenes small enough that testing every sphere is faster.
   var hierarchy: BoundingVolumeHierarchy<Scalar>?
+  /// Without a hierarchy: per sphere, the centre relative to the rays'
+  /// origin and the distance from it within which the kernel can report a
+  /// hit (the hierarchy's conservative reach), for culling spheres per
+  /// tile of pixels.
+  var cullCenters: [Vector3<Double>] = []
+  var cullRadii: [Double] = []
   public let materials: [Material<Scalar>]
   public let lights: [Light<Scalar>]
   public let ambient: RGB<Scalar>
@@ -48,8 +54,59 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       spheres = bvh.order.map { spheres[Int($0)] }
       sphereMaterials = bvh.order.map { sphereMaterials[Int($0)] }
       hierarchy = bvh
+    } else {
+      let model: BoundingVolumeHierarchy<Scalar>.ErrorModel =
+        Kernel.self == StableKernel<Scalar>.self ? .cancellationFree : .textbook
+      for record in spheres {
+        let (center, radius) = Kernel.centerAndRadius(record)
+        let offset = center - rayOrigin
+        let reach = BoundingVolumeHierarchy<Scalar>.reach(
+          radius: radius.magnitude, distance: offset.length * (1 + 8 * Scalar.ulpOfOne),
+          model: model)
+        cullCenters.append(Vector3<Double>(offset))
+        cullRadii.append(Double(reach))
+      }
     }
   }
+
+  /// Writes into `candidates`, in scene order, the spheres that some ray
+  /// through the pyramid from the rays' origin spanned by `corners` (unit
+  /// directions in order around it) may hit, and returns their count.
+  ///
+  /// A sphere is left out only when its reach lies wholly outside one of
+  /// the pyramid's faces by more than the rounding of any pixel's ray
+  /// (64 ε of the render's precision times the distance), so the nearest
+  /// hit of every ray in the tile is the same as testing every sphere.
+  func cullSpheres(
+    corners: [Vector3<Double>], into candidates: UnsafeMutableBufferPointer<Int32>
+  ) -> Int {
+    var faces: [Vector3<Double>] = []
+    let middle = corners.reduce(Vector3<Double>.zero, +)
+    for index in corners.indices {
+      let normal = corners[index].cross(corners[(index + 1) % corners.count])
+      let length = normal.length
+      guard length > 1e-300, length.isFinite else { continue }
+      var unit = normal / length
+      if unit.dot(middle) < 0 { unit = -unit }
+      faces.append(unit)
+    }
+    let slack = 64 * Double(Scalar.ulpOfOne)
+    var count = 0
+    for sphere in cullCenters.indices {
+      let center = cullCenters[sphere]
+      let radius = cullRadii[sphere]
+      let margin = radius + slack * (center.length + radius) + 1e-300
+      let outside = faces.contains { $0.dot(center) < -margin }
+      if !outside {
+        candidates[count] = Int32(truncatingIfNeeded: sphere)
+        count += 1
+      }
+    }
+    return count
+  }
+
+  /// Whether per-tile culling applies: spheres without a hierarchy.
+  var cullsPerTile: Bool { hierarchy == nil && spheres.count > 1 }
 
   /// What a camera ray hit first.
   public enum Nearest: Sendable {
@@ -57,11 +114,24 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     case plane(Int)
   }
 
-  /// The nearest hit in (0, ∞) of a camera ray through the eye.
-  func nearest(_ ray: CameraRay<Scalar>) -> (t: Scalar, what: Nearest)? {
+  /// The nearest hit in (0, ∞) of a camera ray through the eye, testing
+  /// only the spheres in `candidates` when given (see `cullSpheres`).
+  func nearest(
+    _ ray: CameraRay<Scalar>, candidates: UnsafeBufferPointer<Int32>? = nil
+  ) -> (t: Scalar, what: Nearest)? {
     var tBest = Scalar.infinity
     var best: Nearest?
-    if let hierarchy {
+    if let candidates {
+      spheres.withUnsafeBufferPointer { records in
+        for candidate in candidates {
+          let index = Int(candidate)
+          if let t = Kernel.intersect(records[index], ray, before: tBest) {
+            tBest = t
+            best = .sphere(index)
+          }
+        }
+      }
+    } else if let hierarchy {
       spheres.withUnsafeBufferPointer { records in
         if let hit = hierarchy.nearest(ray, before: tBest, records: records, kernel: Kernel.self) {
           tBest = hit.t

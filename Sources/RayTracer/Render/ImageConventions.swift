@@ -92,9 +92,11 @@ extension ImageStyle {
     guard value > 0 else { return 0 }
     guard value < 1 else { return 255 }
     let scaled = value * 255
+    // Through Int: the direct UInt8 conversion is the standard library's
+    // generic bit-by-bit path, a quarter of a PNG write's time.
     switch self {
-    case .course: return UInt8(scaled)
-    case .mit: return UInt8(scaled.rounded())
+    case .course: return UInt8(truncatingIfNeeded: Int(scaled))
+    case .mit: return UInt8(truncatingIfNeeded: Int(scaled.rounded()))
     }
   }
 }

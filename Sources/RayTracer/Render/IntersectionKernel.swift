@@ -14,7 +14,11 @@ public struct CameraRay<Scalar: RayScalar>: Sendable {
     self.origin = origin
     self.direction = direction
     lengthSquared = direction.lengthSquared
-    inverseLengthSquared = 1 / lengthSquared
+    // Camera rays are unit to within a few ulps: with a = 1 + δ, 2 − a is
+    // 1/a to within δ² < ε once |δ| < 2^−26, and saves a division per ray.
+    let deviation = lengthSquared - 1
+    inverseLengthSquared =
+      deviation.magnitude < 0x1p-26 ? 1 - deviation : 1 / lengthSquared
   }
 }
 
@@ -134,6 +138,9 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
     /// grazing plane keeps its orientation.
     var normalTail: Vector3<Scalar>
     var distance: Scalar
+    /// Whether n·d is a single product (one non-zero component, no tail):
+    /// then it is correctly rounded and never cancels, grazing or not.
+    var isAxisAligned: Bool
   }
 
   public static func frameOrigin(eye: Vector3<Double>) -> Vector3<Scalar> {
@@ -160,7 +167,10 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
       ? Vector3(plane.normal - Vector3<Double>(normal)) : .zero
     let distance: Scalar = CameraRelative.plane(
       normal: plane.normal, offset: plane.offset, eye: eye)
-    return PlaneRecord(normal: normal, normalTail: tail, distance: distance)
+    let nonZero = [normal.x, normal.y, normal.z].filter { $0 != 0 }.count
+    return PlaneRecord(
+      normal: normal, normalTail: tail, distance: distance,
+      isAxisAligned: nonZero == 1 && tail == .zero)
   }
 
   public static func centerAndRadius(_ record: SphereRecord) -> (Vector3<Scalar>, Scalar) {
@@ -203,7 +213,7 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
     // (measured: it is three libm calls, 11 ns a ray, without FMA).
     let plain = record.normal.dot(ray.direction)
     let denominator: Scalar
-    if plain.magnitude >= 0.25 {
+    if plain.magnitude >= 0.25 || record.isAxisAligned {
       denominator = plain
     } else if plain.magnitude > 8 * Scalar.ulpOfOne
       && (plain > 0) != (record.distance > 0)

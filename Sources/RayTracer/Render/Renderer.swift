@@ -59,9 +59,7 @@ public enum Renderer {
             forEachRowBatch(
               rows: height, threads: settings.threads, progress: progress
             ) { rows in
-              for row in rows {
-                renderRow(row, columns.buffer, scene, camera, settings, targets)
-              }
+              renderRows(rows, columns.buffer, scene, camera, settings, targets)
             }
           }
         }
@@ -93,8 +91,45 @@ public enum Renderer {
     let color: UnsafeMutableBufferPointer<RGB<S>>
   }
 
+  /// Columns per tile: with a batch's rows, the tiles whose spheres are
+  /// culled together (scenes without a hierarchy).
+  static let tileWidth = 16
+
+  /// Renders a batch of rows, tile by tile when the scene culls spheres per
+  /// tile: each tile tests only the spheres its rays may hit.
+  private static func renderRows<Kernel: IntersectionKernel, R: RayScalar>(
+    _ rows: Range<Int>, _ columns: UnsafeBufferPointer<R>, _ scene: CompiledScene<Kernel>,
+    _ camera: PerspectiveCamera<R>, _ settings: RenderSettings,
+    _ targets: Targets<Kernel.Scalar>
+  ) {
+    guard scene.cullsPerTile else {
+      for row in rows {
+        renderRow(row, 0..<settings.width, nil, columns, scene, camera, settings, targets)
+      }
+      return
+    }
+    let aspect = R(settings.height) / R(settings.width)
+    let top: R = settings.style.screenY(row: rows.lowerBound, height: settings.height)
+    let bottom: R = settings.style.screenY(row: rows.upperBound - 1, height: settings.height)
+    withUnsafeTemporaryAllocation(of: Int32.self, capacity: scene.sphereCount) { candidates in
+      for start in stride(from: 0, to: settings.width, by: tileWidth) {
+        let tile = start..<min(start + tileWidth, settings.width)
+        let (left, right) = (columns[tile.lowerBound], columns[tile.upperBound - 1])
+        let corners = [(left, top), (right, top), (right, bottom), (left, bottom)].map {
+          Vector3<Double>(camera.rayDirection(x: $0.0, y: $0.1, aspect: aspect))
+        }
+        let count = scene.cullSpheres(corners: corners, into: candidates)
+        let chosen = UnsafeBufferPointer(rebasing: candidates[0..<count])
+        for row in rows {
+          renderRow(row, tile, chosen, columns, scene, camera, settings, targets)
+        }
+      }
+    }
+  }
+
   private static func renderRow<Kernel: IntersectionKernel, R: RayScalar>(
-    _ row: Int, _ columns: UnsafeBufferPointer<R>, _ scene: CompiledScene<Kernel>,
+    _ row: Int, _ tile: Range<Int>, _ candidates: UnsafeBufferPointer<Int32>?,
+    _ columns: UnsafeBufferPointer<R>, _ scene: CompiledScene<Kernel>,
     _ camera: PerspectiveCamera<R>, _ settings: RenderSettings,
     _ targets: Targets<Kernel.Scalar>
   ) {
@@ -108,11 +143,11 @@ public enum Renderer {
     let wantsNormals = targets.normals.count > 0
     let wantsColor = targets.color.count > 0
     let attenuate = style == .mit
-    for column in 0..<width {
+    for column in tile {
       let direction = Vector3<S>(camera.rayDirection(x: columns[column], rowBase: rowBase))
       let ray = CameraRay(origin: scene.rayOrigin, direction: direction)
       let pixel = row * width + column
-      guard let hit = scene.nearest(ray) else {
+      guard let hit = scene.nearest(ray, candidates: candidates) else {
         if wantsDepth { targets.depth[pixel] = .infinity }
         if wantsNormals { targets.normals[pixel] = .zero }
         if wantsColor { targets.color[pixel] = scene.background }
