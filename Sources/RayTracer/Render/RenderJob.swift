@@ -1,3 +1,5 @@
+import Dispatch
+
 #if canImport(Glibc)
 import Glibc
 #elseif canImport(Darwin)
@@ -81,22 +83,27 @@ public enum RenderJob {
     let compileSeconds = clock.lap()
     let buffers = Renderer.render(compiled, settings: settings, progress: progress)
     let renderSeconds = clock.lap()
-    var usedRange: ClosedRange<Double>?
-    var encoded: [(bytes: [UInt8], path: String)] = []
-    for file in files {
+    let usedRange =
+      files.contains { $0.kind == .depth && $0.format.isEightBit }
+      ? settings.style.depthRange(buffers.depth, given: depthRange) : nil
+    // Each file is mapped and compressed on its own thread: with three
+    // outputs this was as long as the render itself.
+    let encodedFiles = EncodedFiles(count: files.count)
+    DispatchQueue.concurrentPerform(iterations: files.count) { index in
+      let file = files[index]
       let bytes: [UInt8]
       if !file.format.isEightBit {
         bytes = encodeRaw(rawImage(file.kind, buffers), file.format)
       } else if file.kind == .depth {
-        usedRange = settings.style.depthRange(buffers.depth, given: depthRange)
-        bytes = encode(settings.style.depthImage(buffers, range: depthRange), file.format, png)
+        bytes = encode(settings.style.depthImage(buffers, range: usedRange), file.format, png)
       } else if file.kind == .normals {
         bytes = encode(settings.style.normalImage(buffers), file.format, png)
       } else {
         bytes = encode(settings.style.colorImage(buffers), file.format, png)
       }
-      encoded.append((bytes, file.path))
+      encodedFiles.store(bytes, at: index)
     }
+    let encoded = files.indices.map { (encodedFiles.bytes(at: $0), files[$0].path) }
     try AtomicFile.writeAll(encoded)
     return RenderReport(
       settings: settings, spheres: compiled.sphereCount, planes: compiled.planeCount,
@@ -135,6 +142,30 @@ public enum RenderJob {
           values: image.values.map { Float($0) }))
     }
     return NPYEncoder.encode(image)
+  }
+}
+
+/// One slot per output, each written by exactly one encoding thread: fixed
+/// storage, so that no write touches shared array bookkeeping.
+private final class EncodedFiles: @unchecked Sendable {
+  private let slots: UnsafeMutableBufferPointer<[UInt8]>
+
+  init(count: Int) {
+    slots = .allocate(capacity: count)
+    slots.initialize(repeating: [])
+  }
+
+  deinit {
+    slots.deinitialize()
+    slots.deallocate()
+  }
+
+  func store(_ bytes: [UInt8], at index: Int) {
+    slots[index] = bytes
+  }
+
+  func bytes(at index: Int) -> [UInt8] {
+    slots[index]
   }
 }
 
