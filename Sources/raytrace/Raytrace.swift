@@ -19,3 +19,4 @@ struct Raytrace: ParsableCommand {
 extension ImageStyle: ExpressibleByArgument {}
 extension Precision: ExpressibleByArgument {}
 extension IntersectionMethod: ExpressibleByArgument {}
+extension PixelFilter: ExpressibleByArgument {}

@@ -85,6 +85,22 @@ struct Render: ParsableCommand {
     help: "zlib level for PNG files, 0 to 9: lower is faster and larger, higher smaller and slower.")
   var pngLevel: Int = Int(PNGOptions.default.compressionLevel)
 
+  @Option(
+    help: ArgumentHelp(
+      "Rays per pixel for the shaded image: 1, 4, 9, 16, ... (a square), jittered on a grid of strata; depth and normals keep the pixel centre.",
+      valueName: "n"))
+  var samples: Int = 1
+
+  @Option(
+    name: [.long, .customLong("filter", withSingleDash: true)],
+    help: "The pixel filter of supersampled shading: box (the pixel's square) or tent (a 2x2-pixel tent).")
+  var filter: PixelFilter = .box
+
+  @Flag(
+    name: .customLong("jitter", withSingleDash: true),
+    help: "The assignment's spelling: samples are always jittered, so this changes nothing.")
+  var jitter = false
+
   @Flag(help: "Print what was rendered to standard error: size, rays, time, throughput, and which outputs were computed or left out.")
   var stats = false
 
@@ -163,10 +179,17 @@ struct Render: ParsableCommand {
     guard (0...9).contains(pngLevel) else {
       throw ValidationError("--png-level must be between 0 and 9; got \(pngLevel).")
     }
-    let settings = RenderSettings(
+    let strata = Int(Double(max(samples, 0)).squareRoot())
+    guard samples >= 1, samples <= 4096, strata * strata == samples else {
+      throw ValidationError(
+        "--samples must be a square between 1 and 4096 (1, 4, 9, 16, ...); got \(samples).")
+    }
+    var settings = RenderSettings(
       width: width, height: height, outputs: [],
       style: style ?? (input != nil ? .mit : .course), method: intersection,
       precision: precision, threads: threads ?? Renderer.availableCores)
+    settings.samples = samples
+    settings.filter = filter
     return Plan(scenePath: scenePath, settings: settings, files: files, depthRange: range)
   }
 

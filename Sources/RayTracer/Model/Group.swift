@@ -8,19 +8,8 @@ public struct Group<Scalar: RayScalar>: Hashable, Sendable {
 
   /// Every sphere and plane, nested groups flattened, in file order.
   public func primitives() -> (spheres: [Sphere<Scalar>], planes: [Plane<Scalar>]) {
-    var spheres: [Sphere<Scalar>] = []
-    var planes: [Plane<Scalar>] = []
-    func collect(_ group: Group) {
-      for object in group.objects {
-        switch object {
-        case .sphere(let sphere): spheres.append(sphere)
-        case .plane(let plane): planes.append(plane)
-        case .group(let nested): collect(nested)
-        }
-      }
-    }
-    collect(self)
-    return (spheres, planes)
+    let all = flattened()
+    return (all.spheres, all.planes)
   }
 }
 
@@ -29,7 +18,9 @@ public struct Group<Scalar: RayScalar>: Hashable, Sendable {
 public indirect enum SceneObject<Scalar: RayScalar>: Hashable, Sendable {
   case sphere(Sphere<Scalar>)
   case plane(Plane<Scalar>)
+  case triangle(Triangle<Scalar>)
   case group(Group<Scalar>)
+  case transform(Transform<Scalar>)
 }
 
 extension SceneObject: Intersectable {
@@ -39,7 +30,9 @@ extension SceneObject: Intersectable {
     switch self {
     case .sphere(let sphere): sphere.intersect(ray, after: tMin, before: tMax)
     case .plane(let plane): plane.intersect(ray, after: tMin, before: tMax)
+    case .triangle(let triangle): triangle.intersect(ray, after: tMin, before: tMax)
     case .group(let group): group.intersect(ray, after: tMin, before: tMax)
+    case .transform(let transform): transform.intersect(ray, after: tMin, before: tMax)
     }
   }
 }

@@ -20,6 +20,13 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// tile of pixels.
   var cullCenters: [Vector3<Double>] = []
   var cullRadii: [Double] = []
+  /// Triangles in the kernel's frame, in hierarchy order when there is one.
+  var triangles: [TriangleRecord<Scalar>] = []
+  var triangleMaterials: [Int32] = []
+  var triangleHierarchy: BoundingVolumeHierarchy<Scalar>?
+  /// Spheres under transforms that are not similarities.
+  var ellipsoids: [EllipsoidRecord<Kernel>] = []
+  var ellipsoidMaterials: [Int32] = []
   public let materials: [Material<Scalar>]
   public let lights: [Light<Scalar>]
   public let ambient: RGB<Scalar>
@@ -39,7 +46,8 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     camera = PerspectiveCamera(scene.camera)
     eye = Vector3(eyeDouble)
     rayOrigin = Kernel.frameOrigin(eye: eyeDouble)
-    let (sphereList, planeList) = scene.root.primitives()
+    let all = scene.root.flattened()
+    let (sphereList, planeList) = (all.spheres, all.planes)
     spheres = sphereList.map { Kernel.makeSphere($0, eye: eyeDouble) }
     sphereMaterials = sphereList.map { Int32(truncatingIfNeeded: $0.materialIndex) }
     planes = planeList.map { Kernel.makePlane($0, eye: eyeDouble) }
@@ -66,6 +74,69 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
         cullCenters.append(Vector3<Double>(offset))
         cullRadii.append(Double(reach))
       }
+    }
+    compileMeshesAndEllipsoids(all, eye: eyeDouble, hierarchyThreshold: hierarchyThreshold)
+  }
+
+  /// The triangles and ellipsoids of `all`, compiled for this kernel.
+  private mutating func compileMeshesAndEllipsoids(
+    _ all: Primitives<Double>, eye: Vector3<Double>, hierarchyThreshold: Int
+  ) {
+    let cameraRelative = Kernel.frameOrigin(eye: eye) == .zero
+    func frame(_ point: Vector3<Double>) -> Vector3<Scalar> {
+      guard cameraRelative else { return Vector3(point) }
+      func component(_ a: Double, _ b: Double) -> Scalar {
+        let difference = Compensated.twoSum(a, -b)
+        return CameraRelative.narrowed(difference.sum, difference.error)
+      }
+      return Vector3(
+        component(point.x, eye.x), component(point.y, eye.y), component(point.z, eye.z))
+    }
+    for triangle in all.triangles {
+      let record = TriangleRecord<Scalar>(
+        v0: frame(triangle.v0), v1: frame(triangle.v1), v2: frame(triangle.v2),
+        normals: triangle.vertexNormals.map { Triangle<Scalar>.VertexNormals(
+          Vector3($0.n0), Vector3($0.n1), Vector3($0.n2)) })
+      // A degenerate triangle is never hit: leaving it out changes nothing.
+      guard record.geometricNormal != nil else { continue }
+      triangles.append(record)
+      triangleMaterials.append(Int32(truncatingIfNeeded: triangle.materialIndex))
+    }
+    if triangles.count >= hierarchyThreshold {
+      let boxes = triangles.map { record in
+        let lower = Vector3(
+          Swift.min(record.v0.x, record.v1.x, record.v2.x),
+          Swift.min(record.v0.y, record.v1.y, record.v2.y),
+          Swift.min(record.v0.z, record.v1.z, record.v2.z))
+        let upper = Vector3(
+          Swift.max(record.v0.x, record.v1.x, record.v2.x),
+          Swift.max(record.v0.y, record.v1.y, record.v2.y),
+          Swift.max(record.v0.z, record.v1.z, record.v2.z))
+        // Rounded out by a few ulps of the largest coordinate: the
+        // watertight test decides on the sheared, rounded vertices.
+        let pad = 4 * Scalar.ulpOfOne * Swift.max(lower.maxMagnitude, upper.maxMagnitude)
+        let padding = Vector3(pad, pad, pad)
+        return (lower: lower - padding, upper: upper + padding)
+      }
+      let bvh = BoundingVolumeHierarchy<Scalar>(boxes: boxes)
+      triangles = bvh.order.map { triangles[Int($0)] }
+      triangleMaterials = bvh.order.map { triangleMaterials[Int($0)] }
+      triangleHierarchy = bvh
+    }
+    for ellipsoid in all.transformedSpheres {
+      let objectEye = ellipsoid.inverse.transformPoint(eye)
+      let inverse = Matrix4<Scalar>(ellipsoid.inverse)
+      ellipsoids.append(
+        EllipsoidRecord(
+          sphere: Kernel.makeSphere(ellipsoid.sphere, eye: objectEye),
+          origin: Kernel.frameOrigin(eye: objectEye),
+          inverseRows: (
+            Vector3(inverse.m00, inverse.m01, inverse.m02),
+            Vector3(inverse.m10, inverse.m11, inverse.m12),
+            Vector3(inverse.m20, inverse.m21, inverse.m22)
+          ),
+          matrix: Matrix4<Scalar>(ellipsoid.matrix)))
+      ellipsoidMaterials.append(Int32(truncatingIfNeeded: ellipsoid.sphere.materialIndex))
     }
   }
 
@@ -108,10 +179,16 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// Whether per-tile culling applies: spheres without a hierarchy.
   var cullsPerTile: Bool { hierarchy == nil && spheres.count > 1 }
 
+  public var triangleCount: Int { triangles.count }
+  public var ellipsoidCount: Int { ellipsoids.count }
+
   /// What a camera ray hit first.
   public enum Nearest: Sendable {
     case sphere(Int)
     case plane(Int)
+    /// With the barycentric weights of the hit, for interpolated normals.
+    case triangle(Int, Scalar, Scalar, Scalar)
+    case ellipsoid(Int)
   }
 
   /// The nearest hit in (0, ∞) of a camera ray through the eye, testing
@@ -154,6 +231,34 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
         best = .plane(index)
       }
     }
+    if !triangles.isEmpty {
+      let prepared = WatertightRay(Ray(origin: ray.origin, direction: ray.direction))
+      triangles.withUnsafeBufferPointer { records in
+        if let triangleHierarchy {
+          let leaves = TriangleLeaves(records: records, ray: prepared)
+          if let hit = triangleHierarchy.nearest(ray, before: tBest, leaves: leaves),
+            let found = records[hit.index].intersect(prepared, before: hit.t.nextUp)
+          {
+            tBest = hit.t
+            best = .triangle(hit.index, found.u, found.v, found.w)
+          }
+        } else {
+          for index in records.indices {
+            if let found = records[index].intersect(prepared, before: tBest) {
+              tBest = found.t
+              best = .triangle(index, found.u, found.v, found.w)
+            }
+          }
+        }
+      }
+    }
+    for index in ellipsoids.indices {
+      let local = ellipsoids[index].localRay(ray)
+      if let t = Kernel.intersect(ellipsoids[index].sphere, local, before: tBest) {
+        tBest = t
+        best = .ellipsoid(index)
+      }
+    }
     guard let best else { return nil }
     return (tBest, best)
   }
@@ -162,6 +267,11 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     switch what {
     case .sphere(let index): Kernel.normal(spheres[index], ray, t: t)
     case .plane(let index): Kernel.normal(planes[index])
+    case .triangle(let index, let u, let v, let w):
+      triangles[index].normal(u: u, v: v, w: w)
+    case .ellipsoid(let index):
+      ellipsoids[index].matrix.transformNormal(
+        Kernel.normal(ellipsoids[index].sphere, ellipsoids[index].localRay(ray), t: t))
     }
   }
 
@@ -170,7 +280,77 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     switch what {
     case .sphere(let sphere): index = sphereMaterials[sphere]
     case .plane(let plane): index = planeMaterials[plane]
+    case .triangle(let triangle, _, _, _): index = triangleMaterials[triangle]
+    case .ellipsoid(let ellipsoid): index = ellipsoidMaterials[ellipsoid]
     }
     return materials[Int(index)]
+  }
+}
+
+/// A triangle as the loop tests it: vertices in the kernel's frame.
+struct TriangleRecord<Scalar: RayScalar>: Sendable {
+  var v0: Vector3<Scalar>
+  var v1: Vector3<Scalar>
+  var v2: Vector3<Scalar>
+  var normals: Triangle<Scalar>.VertexNormals?
+  /// The winding's unit normal; nil for a degenerate triangle.
+  var geometricNormal: Vector3<Scalar>?
+
+  init(
+    v0: Vector3<Scalar>, v1: Vector3<Scalar>, v2: Vector3<Scalar>,
+    normals: Triangle<Scalar>.VertexNormals?
+  ) {
+    self.v0 = v0
+    self.v1 = v1
+    self.v2 = v2
+    self.normals = normals
+    geometricNormal = Triangle(v0, v1, v2).geometricNormal
+  }
+
+  @inline(__always)
+  func intersect(
+    _ ray: WatertightRay<Scalar>, before tMax: Scalar
+  ) -> (t: Scalar, u: Scalar, v: Scalar, w: Scalar)? {
+    TriangleIntersection.intersect(ray, v0, v1, v2, after: 0, before: tMax)
+  }
+
+  func normal(u: Scalar, v: Scalar, w: Scalar) -> Vector3<Scalar> {
+    let geometric = geometricNormal ?? .zero
+    guard let normals else { return geometric }
+    let blended = normals.n0 * u + normals.n1 * v + normals.n2 * w
+    guard blended.maxMagnitude > 0, blended.isFinite else { return geometric }
+    return blended.normalized()
+  }
+}
+
+/// Triangles tested against one prepared ray, for the hierarchy.
+struct TriangleLeaves<Scalar: RayScalar>: LeafPrimitives {
+  let records: UnsafeBufferPointer<TriangleRecord<Scalar>>
+  let ray: WatertightRay<Scalar>
+
+  @inline(__always)
+  func intersect(_ position: Int, before tMax: Scalar) -> Scalar? {
+    records[position].intersect(ray, before: tMax)?.t
+  }
+}
+
+/// A sphere under a non-similarity transform, stored in its own space:
+/// rays are carried there by M⁻¹ (direction not renormalised, so t is the
+/// world t) and the kernel's sphere test runs unchanged.
+struct EllipsoidRecord<Kernel: IntersectionKernel>: Sendable {
+  typealias Scalar = Kernel.Scalar
+  var sphere: Kernel.SphereRecord
+  /// The eye in object space, in the kernel's frame.
+  var origin: Vector3<Scalar>
+  /// The rows of M⁻¹'s linear part.
+  var inverseRows: (Vector3<Scalar>, Vector3<Scalar>, Vector3<Scalar>)
+  var matrix: Matrix4<Scalar>
+
+  @inline(__always)
+  func localRay(_ ray: CameraRay<Scalar>) -> CameraRay<Scalar> {
+    let d = ray.direction
+    return CameraRay(
+      origin: origin,
+      direction: Vector3(inverseRows.0.dot(d), inverseRows.1.dot(d), inverseRows.2.dot(d)))
   }
 }

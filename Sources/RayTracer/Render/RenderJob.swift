@@ -31,7 +31,13 @@ public struct RenderReport: Sendable {
   public var compileSeconds: Double
   public var renderSeconds: Double
   public var writeSeconds: Double
-  public var rays: Int { settings.width * settings.height }
+  /// Camera rays traced: one per pixel, plus `samples` more per pixel for
+  /// supersampled shading.
+  public var rays: Int {
+    let perPixel =
+      settings.samples > 1 && settings.outputs.contains(.shaded) ? settings.samples + 1 : 1
+    return settings.width * settings.height * perPixel
+  }
   public var megaraysPerSecond: Double { Double(rays) / renderSeconds / 1e6 }
   /// The depth range a depth image used, if one was written.
   public var depthRange: ClosedRange<Double>?

@@ -30,6 +30,11 @@ public struct RenderSettings: Sendable {
   public var threads: Int
   /// Spheres from which a BVH is built.
   public var hierarchyThreshold: Int?
+  /// Camera rays per pixel for the shaded image, a perfect square: jittered
+  /// on a √N × √N grid of strata. Depth and normals take the pixel's centre.
+  public var samples: Int = 1
+  /// How samples are spread over and weighted around a pixel.
+  public var filter: PixelFilter = .box
 
   public init(
     width: Int, height: Int, outputs: RenderOutputs,
@@ -45,5 +50,24 @@ public struct RenderSettings: Sendable {
     self.precision = precision
     self.threads = threads
     self.hierarchyThreshold = hierarchyThreshold
+  }
+}
+
+/// The reconstruction filter of supersampled shading.
+public enum PixelFilter: String, CaseIterable, Sendable {
+  /// Samples uniform over the pixel's square, equally weighted.
+  case box
+  /// Samples over the 2×2-pixel support of the tent (1 − |x|)(1 − |y|),
+  /// drawn from it by inverting its distribution, so equally weighted too.
+  case tent
+
+  /// The offset from the pixel's centre, in pixels, of stratum position
+  /// u ∈ [0, 1).
+  @inlinable
+  public func offset(_ u: Double) -> Double {
+    switch self {
+    case .box: return u - 0.5
+    case .tent: return u < 0.5 ? (2 * u).squareRoot() - 1 : 1 - (2 - 2 * u).squareRoot()
+    }
   }
 }

@@ -102,7 +102,8 @@ public enum Renderer {
     _ camera: PerspectiveCamera<R>, _ settings: RenderSettings,
     _ targets: Targets<Kernel.Scalar>
   ) {
-    guard scene.cullsPerTile else {
+    // Supersampled rays leave the pixel centres' frusta: no culling then.
+    guard scene.cullsPerTile && settings.samples == 1 else {
       for row in rows {
         renderRow(row, 0..<settings.width, nil, columns, scene, camera, settings, targets)
       }
@@ -147,24 +148,78 @@ public enum Renderer {
       let direction = Vector3<S>(camera.rayDirection(x: columns[column], rowBase: rowBase))
       let ray = CameraRay(origin: scene.rayOrigin, direction: direction)
       let pixel = row * width + column
+      if wantsColor && settings.samples > 1 {
+        targets.color[pixel] = supersampledColor(
+          column: column, row: row, scene: scene, camera: camera, settings: settings)
+      }
+      let shadeCentre = wantsColor && settings.samples == 1
       guard let hit = scene.nearest(ray, candidates: candidates) else {
         if wantsDepth { targets.depth[pixel] = .infinity }
         if wantsNormals { targets.normals[pixel] = .zero }
-        if wantsColor { targets.color[pixel] = scene.background }
+        if shadeCentre { targets.color[pixel] = scene.background }
         continue
       }
       if wantsDepth { targets.depth[pixel] = hit.t }
-      guard wantsNormals || wantsColor else { continue }
+      guard wantsNormals || shadeCentre else { continue }
       let normal = scene.normal(of: hit.what, ray, t: hit.t)
       if wantsNormals { targets.normals[pixel] = normal }
-      if wantsColor {
-        let material = scene.material(of: hit.what)
-        targets.color[pixel] = material.shade(
-          point: scene.eye + direction * hit.t, normal: normal,
-          viewDirection: direction, ambient: scene.ambient,
-          lights: scene.lights, attenuate: attenuate)
+      if shadeCentre {
+        targets.color[pixel] = shade(
+          hit, ray: ray, normal: normal, scene: scene, attenuate: attenuate)
       }
     }
+  }
+
+  @inline(__always)
+  private static func shade<Kernel: IntersectionKernel>(
+    _ hit: (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest),
+    ray: CameraRay<Kernel.Scalar>, normal: Vector3<Kernel.Scalar>,
+    scene: CompiledScene<Kernel>, attenuate: Bool
+  ) -> RGB<Kernel.Scalar> {
+    scene.material(of: hit.what).shade(
+      point: scene.eye + ray.direction * hit.t, normal: normal,
+      viewDirection: ray.direction, ambient: scene.ambient,
+      lights: scene.lights, attenuate: attenuate)
+  }
+
+  /// The pixel's colour from `settings.samples` jittered, stratified rays
+  /// through its filter's support, equally weighted. The jitter comes from
+  /// a generator seeded by the pixel's index, so the image is the same for
+  /// any thread count.
+  private static func supersampledColor<Kernel: IntersectionKernel, R: RayScalar>(
+    column: Int, row: Int, scene: CompiledScene<Kernel>, camera: PerspectiveCamera<R>,
+    settings: RenderSettings
+  ) -> RGB<Kernel.Scalar> {
+    typealias S = Kernel.Scalar
+    let (width, height) = (settings.width, settings.height)
+    let style = settings.style
+    let aspect = R(height) / R(width)
+    let centreX: R = style.screenX(column: column, width: width)
+    let centreY: R = style.screenY(row: row, height: height)
+    // One pixel in screen units: the distance between adjacent samples of
+    // the style's grid.
+    let stepX: R = width > 1 ? style.screenX(column: 1, width: width) - style.screenX(column: 0, width: width) : 2
+    let stepY: R = height > 1 ? style.screenY(row: 0, height: height) - style.screenY(row: 1, height: height) : 2
+    let strata = Int(Double(settings.samples).squareRoot())
+    var generator = SplitMix64(seed: UInt64(row * width + column) &* 0x9E37_79B9_7F4A_7C15)
+    var sum = RGB<S>.zero
+    for stratumY in 0..<strata {
+      for stratumX in 0..<strata {
+        let u = (Double(stratumX) + Double.random(in: 0..<1, using: &generator)) / Double(strata)
+        let v = (Double(stratumY) + Double.random(in: 0..<1, using: &generator)) / Double(strata)
+        let x = centreX + R(settings.filter.offset(u)) * stepX
+        let y = centreY - R(settings.filter.offset(v)) * stepY
+        let direction = Vector3<S>(camera.rayDirection(x: x, y: y, aspect: aspect))
+        let ray = CameraRay(origin: scene.rayOrigin, direction: direction)
+        guard let hit = scene.nearest(ray) else {
+          sum += scene.background
+          continue
+        }
+        let normal = scene.normal(of: hit.what, ray, t: hit.t)
+        sum += shade(hit, ray: ray, normal: normal, scene: scene, attenuate: style == .mit)
+      }
+    }
+    return sum / S(strata * strata)
   }
 
   /// Rows per batch: small enough to balance two threads on a 100-row image,

@@ -147,6 +147,8 @@ extension SceneObject {
     case .sphere: "sphere"
     case .plane: "plane"
     case .group: "group"
+    case .triangle: "triangle"
+    case .transform: "transform"
     }
   }
 }

@@ -1,0 +1,510 @@
+/// A 4×4 matrix applied to column vectors, p′ = M·p: the scene's
+/// `Transform` blocks.
+///
+///     let m = Matrix4<Double>.translation(Vector3(5, 0, 0))
+///       * Matrix4.scale(Vector3(5, 0.2, 0.2))
+///     m.transformPoint(Vector3(1, 1, 1))  // (10, 0.2, 0.2)
+///
+/// Design goals, in order: the exact values the course's transforms should
+/// have (rotations by multiples of 90° have exact zeros and ones), an inverse
+/// that says when it does not exist instead of returning noise, and cheap
+/// per-ray helpers.
+///
+/// Composition follows the 6.837 parser: each transform in a block multiplies
+/// the matrix so far on the right (`matrix = matrix * next`), so the first
+/// one listed is applied last to the object's points, and a `Transform`
+/// holding M draws the object at M·p. A ray is taken into object space by
+/// M⁻¹ (`transformPoint` for the origin, `transformDirection` for the
+/// direction, left unnormalised so that t is the same in both spaces), and
+/// a hit's normal back by `transformNormal`.
+///
+/// The entries are stored row by row: `m01` is row 0, column 1, and the
+/// translation is the last column (`m03`, `m13`, `m23`).
+public struct Matrix4<Scalar: RayScalar>: Hashable, Sendable {
+  public var m00, m01, m02, m03: Scalar
+  public var m10, m11, m12, m13: Scalar
+  public var m20, m21, m22, m23: Scalar
+  public var m30, m31, m32, m33: Scalar
+
+  /// The sixteen entries in row order: row 0 first.
+  @inlinable
+  init(
+    _ m00: Scalar, _ m01: Scalar, _ m02: Scalar, _ m03: Scalar,
+    _ m10: Scalar, _ m11: Scalar, _ m12: Scalar, _ m13: Scalar,
+    _ m20: Scalar, _ m21: Scalar, _ m22: Scalar, _ m23: Scalar,
+    _ m30: Scalar, _ m31: Scalar, _ m32: Scalar, _ m33: Scalar
+  ) {
+    self.m00 = m00
+    self.m01 = m01
+    self.m02 = m02
+    self.m03 = m03
+    self.m10 = m10
+    self.m11 = m11
+    self.m12 = m12
+    self.m13 = m13
+    self.m20 = m20
+    self.m21 = m21
+    self.m22 = m22
+    self.m23 = m23
+    self.m30 = m30
+    self.m31 = m31
+    self.m32 = m32
+    self.m33 = m33
+  }
+
+  /// The matrix whose rows are the sixteen `entries` in order: the first
+  /// four are row 0, `entries[4 * row + column]` is (row, column), as a
+  /// matrix is written on paper.
+  ///
+  /// Not the order of the 6.837 scene block `Matrix4f { … }`: its parser
+  /// reads `for j { for i { matrix2(i, j) = readFloat() } }`, and vecmath's
+  /// `Matrix4f(i, j)` is row i, column j (column-major storage,
+  /// `m_elements[4j + i]`), so the file lists the matrix column by column.
+  /// Use `init(columns:)` for that block.
+  ///
+  /// - Precondition: exactly 16 entries; the scene parser reads exactly 16
+  ///   numbers, so any other count is a programming error.
+  public init(rows entries: [Scalar]) {
+    precondition(entries.count == 16, "a 4×4 matrix has 16 entries")
+    self.init(
+      entries[0], entries[1], entries[2], entries[3],
+      entries[4], entries[5], entries[6], entries[7],
+      entries[8], entries[9], entries[10], entries[11],
+      entries[12], entries[13], entries[14], entries[15])
+  }
+
+  /// The matrix whose columns are the sixteen `entries` in order: the first
+  /// four are column 0, `entries[4 * column + row]` is (row, column); the
+  /// translation is `entries[12...14]`. The reading order of the 6.837
+  /// `Matrix4f { … }` scene block (see `init(rows:)`) and of OpenGL.
+  ///
+  /// Note for the scene parser: 6.837 composes that block on the left,
+  /// `matrix = matrix2 * matrix`, unlike `Translate`, `Scale` and the
+  /// rotations, which compose on the right (`matrix = matrix * next`).
+  ///
+  /// - Precondition: exactly 16 entries.
+  public init(columns entries: [Scalar]) {
+    precondition(entries.count == 16, "a 4×4 matrix has 16 entries")
+    self.init(rows: entries)
+    self = transposed()
+  }
+
+  /// Converts each entry, rounding to nearest.
+  @inlinable
+  public init<Other: RayScalar>(_ other: Matrix4<Other>) {
+    func c(_ x: Other) -> Scalar { Scalar(x) }
+    self.init(
+      c(other.m00), c(other.m01), c(other.m02), c(other.m03),
+      c(other.m10), c(other.m11), c(other.m12), c(other.m13),
+      c(other.m20), c(other.m21), c(other.m22), c(other.m23),
+      c(other.m30), c(other.m31), c(other.m32), c(other.m33))
+  }
+
+  /// The entry at (row, column), both in 0...3.
+  ///
+  /// - Precondition: row and column in 0...3.
+  public subscript(row: Int, column: Int) -> Scalar {
+    get {
+      precondition((0..<4).contains(row) && (0..<4).contains(column))
+      switch (row, column) {
+      case (0, 0): return m00
+      case (0, 1): return m01
+      case (0, 2): return m02
+      case (0, 3): return m03
+      case (1, 0): return m10
+      case (1, 1): return m11
+      case (1, 2): return m12
+      case (1, 3): return m13
+      case (2, 0): return m20
+      case (2, 1): return m21
+      case (2, 2): return m22
+      case (2, 3): return m23
+      case (3, 0): return m30
+      case (3, 1): return m31
+      case (3, 2): return m32
+      default: return m33
+      }
+    }
+    set {
+      precondition((0..<4).contains(row) && (0..<4).contains(column))
+      switch (row, column) {
+      case (0, 0): m00 = newValue
+      case (0, 1): m01 = newValue
+      case (0, 2): m02 = newValue
+      case (0, 3): m03 = newValue
+      case (1, 0): m10 = newValue
+      case (1, 1): m11 = newValue
+      case (1, 2): m12 = newValue
+      case (1, 3): m13 = newValue
+      case (2, 0): m20 = newValue
+      case (2, 1): m21 = newValue
+      case (2, 2): m22 = newValue
+      case (2, 3): m23 = newValue
+      case (3, 0): m30 = newValue
+      case (3, 1): m31 = newValue
+      case (3, 2): m32 = newValue
+      default: m33 = newValue
+      }
+    }
+  }
+
+  /// The sixteen entries row by row, the inverse of `init(rows:)`.
+  public var rowMajorEntries: [Scalar] {
+    [
+      m00, m01, m02, m03, m10, m11, m12, m13,
+      m20, m21, m22, m23, m30, m31, m32, m33,
+    ]
+  }
+
+  /// Whether the last row is exactly (0, 0, 0, 1): every transform the scene
+  /// language builds except a general `Matrix4f`.
+  @inlinable
+  public var isAffine: Bool {
+    m30 == 0 && m31 == 0 && m32 == 0 && m33 == 1
+  }
+}
+
+// MARK: - Building transforms
+
+extension Matrix4 {
+  public static var identity: Matrix4 {
+    Matrix4(1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1)
+  }
+
+  /// p ↦ p + offset (directions and normals are unchanged).
+  public static func translation(_ offset: Vector3<Scalar>) -> Matrix4 {
+    Matrix4(
+      1, 0, 0, offset.x,
+      0, 1, 0, offset.y,
+      0, 0, 1, offset.z,
+      0, 0, 0, 1)
+  }
+
+  /// p ↦ (sx·x, sy·y, sz·z). A zero factor gives a singular matrix (its
+  /// `inverse()` is nil); a negative one mirrors, reversing the winding of
+  /// transformed triangles.
+  public static func scale(_ factors: Vector3<Scalar>) -> Matrix4 {
+    Matrix4(
+      factors.x, 0, 0, 0,
+      0, factors.y, 0, 0,
+      0, 0, factors.z, 0,
+      0, 0, 0, 1)
+  }
+
+  /// p ↦ s·p.
+  public static func uniformScale(_ factor: Scalar) -> Matrix4 {
+    scale(Vector3(factor, factor, factor))
+  }
+
+  /// Rotation about the x axis by `degrees`, counter-clockwise when looking
+  /// down the axis towards the origin (right-handed: y turns towards z), as
+  /// 6.837's `XRotate` and `Matrix4f::rotateX`: rows (1, 0, 0), (0, c, −s),
+  /// (0, s, c).
+  ///
+  /// Multiples of 90° give exact zeros and ones (see `cosineAndSine`);
+  /// other angles are within an ulp or so of the correctly rounded cosine and
+  /// sine. A non-finite angle gives NaN entries.
+  public static func rotationX(degrees: Scalar) -> Matrix4 {
+    let (c, s) = cosineAndSine(degrees: degrees)
+    return Matrix4(
+      1, 0, 0, 0,
+      0, c, -s, 0,
+      0, s, c, 0,
+      0, 0, 0, 1)
+  }
+
+  /// Rotation about the y axis: z turns towards x. Rows (c, 0, s),
+  /// (0, 1, 0), (−s, 0, c). See `rotationX(degrees:)`.
+  public static func rotationY(degrees: Scalar) -> Matrix4 {
+    let (c, s) = cosineAndSine(degrees: degrees)
+    return Matrix4(
+      c, 0, s, 0,
+      0, 1, 0, 0,
+      -s, 0, c, 0,
+      0, 0, 0, 1)
+  }
+
+  /// Rotation about the z axis: x turns towards y. Rows (c, −s, 0),
+  /// (s, c, 0), (0, 0, 1). See `rotationX(degrees:)`.
+  public static func rotationZ(degrees: Scalar) -> Matrix4 {
+    let (c, s) = cosineAndSine(degrees: degrees)
+    return Matrix4(
+      c, -s, 0, 0,
+      s, c, 0, 0,
+      0, 0, 1, 0,
+      0, 0, 0, 1)
+  }
+
+  /// cos and sin of an angle in degrees, with the angle reduced exactly
+  /// before converting to radians: r = degrees mod 360 (`remainder` is
+  /// exact), then r = 90·q + ρ with |ρ| ≤ 45 (exact: the subtraction's
+  /// operands are within a factor of two, or ρ lies on their grid), and the
+  /// result is read off the quadrant q. So 90°, 180°, −270° and 3600° give
+  /// exactly 0 and ±1, where cos(90·π/180) would give 6e−17, and the error
+  /// of ρ·π/180 stays relative to ρ rather than to the whole angle.
+  @usableFromInline
+  static func cosineAndSine(degrees: Scalar) -> (cos: Scalar, sin: Scalar) {
+    guard degrees.isFinite else { return (.nan, .nan) }
+    let reduced = degrees.remainder(dividingBy: 360)
+    let quadrant = (reduced / 90).rounded()
+    let rest = reduced - 90 * quadrant
+    let radians = rest * (Scalar.pi / 180)
+    let c = Scalar.cos(radians)
+    let s = Scalar.sin(radians)
+    switch quadrant {
+    case 0: return (c, s)
+    // cos(ρ + 90°) = −sin ρ, sin(ρ + 90°) = cos ρ.
+    case 1: return (-s, c)
+    case -1: return (s, -c)
+    default: return (-c, -s)
+    }
+  }
+}
+
+// MARK: - Arithmetic
+
+extension Matrix4 {
+  /// The product a·b: applying it applies b first, then a.
+  @inlinable
+  public static func * (a: Matrix4, b: Matrix4) -> Matrix4 {
+    Matrix4(
+      a.m00 * b.m00 + a.m01 * b.m10 + a.m02 * b.m20 + a.m03 * b.m30,
+      a.m00 * b.m01 + a.m01 * b.m11 + a.m02 * b.m21 + a.m03 * b.m31,
+      a.m00 * b.m02 + a.m01 * b.m12 + a.m02 * b.m22 + a.m03 * b.m32,
+      a.m00 * b.m03 + a.m01 * b.m13 + a.m02 * b.m23 + a.m03 * b.m33,
+      a.m10 * b.m00 + a.m11 * b.m10 + a.m12 * b.m20 + a.m13 * b.m30,
+      a.m10 * b.m01 + a.m11 * b.m11 + a.m12 * b.m21 + a.m13 * b.m31,
+      a.m10 * b.m02 + a.m11 * b.m12 + a.m12 * b.m22 + a.m13 * b.m32,
+      a.m10 * b.m03 + a.m11 * b.m13 + a.m12 * b.m23 + a.m13 * b.m33,
+      a.m20 * b.m00 + a.m21 * b.m10 + a.m22 * b.m20 + a.m23 * b.m30,
+      a.m20 * b.m01 + a.m21 * b.m11 + a.m22 * b.m21 + a.m23 * b.m31,
+      a.m20 * b.m02 + a.m21 * b.m12 + a.m22 * b.m22 + a.m23 * b.m32,
+      a.m20 * b.m03 + a.m21 * b.m13 + a.m22 * b.m23 + a.m23 * b.m33,
+      a.m30 * b.m00 + a.m31 * b.m10 + a.m32 * b.m20 + a.m33 * b.m30,
+      a.m30 * b.m01 + a.m31 * b.m11 + a.m32 * b.m21 + a.m33 * b.m31,
+      a.m30 * b.m02 + a.m31 * b.m12 + a.m32 * b.m22 + a.m33 * b.m32,
+      a.m30 * b.m03 + a.m31 * b.m13 + a.m32 * b.m23 + a.m33 * b.m33)
+  }
+
+  @inlinable
+  public static func *= (a: inout Matrix4, b: Matrix4) { a = a * b }
+
+  /// Rows and columns exchanged.
+  @inlinable
+  public func transposed() -> Matrix4 {
+    Matrix4(
+      m00, m10, m20, m30,
+      m01, m11, m21, m31,
+      m02, m12, m22, m32,
+      m03, m13, m23, m33)
+  }
+
+  /// The determinant of the upper-left 3×3 (the linear part of an affine
+  /// transform): negative for a mirroring transform, which reverses the
+  /// winding of triangles; zero for a flattening one.
+  @inlinable
+  public var linearDeterminant: Scalar {
+    m00 * (m11 * m22 - m12 * m21)
+      - m01 * (m10 * m22 - m12 * m20)
+      + m02 * (m10 * m21 - m11 * m20)
+  }
+}
+
+// MARK: - Inverse
+
+extension Matrix4 {
+  /// The pivot below which `inverse()` calls the matrix singular, relative
+  /// to the equilibrated matrix (every row's and column's largest entry in
+  /// [1, 2)): 128ε. Gauss–Jordan on such a 4×4 grows entries by at most
+  /// 2³ (partial pivoting), so rounding leaves noise of a few tens of ε
+  /// where a pivot of an exactly singular matrix should be 0; a pivot below
+  /// 128ε cannot be told from that noise, and the inverse's condition number
+  /// would exceed about 1/(128ε), leaving it no reliable digit.
+  public static var singularPivotThreshold: Scalar { 128 * Scalar.ulpOfOne }
+
+  /// The inverse, or nil when the matrix is singular or too close to it to
+  /// invert in this precision (see `singularPivotThreshold`), or has a
+  /// non-finite entry, or its inverse would overflow.
+  ///
+  /// An affine matrix [L t; 0 1] is inverted as [L⁻¹ −L⁻¹t; 0 1], so its
+  /// translation neither affects whether it is invertible nor mixes into
+  /// L⁻¹'s rounding; any other matrix is inverted whole. Either way by
+  /// Gauss–Jordan elimination with partial pivoting, after scaling each row
+  /// and then each column by a power of two (exactly) so that its largest
+  /// entry lies in [1, 2): the singularity test is then independent of the
+  /// units (`Scale 1e-20 1e-20 1e-20` is as invertible as `Scale 1 1 1`).
+  ///
+  /// Error: normwise, ‖M⁻¹·M − I‖ is within a small multiple of nε·κ(M)
+  /// (n = 3 for the linear part of an affine matrix, 4 otherwise; κ the
+  /// ∞-norm condition number), and the translation column of M⁻¹·M is 0
+  /// within a few ε of |L⁻¹|·|t|. See Matrix4Tests for the measured
+  /// constants.
+  public func inverse() -> Matrix4? {
+    let entries = rowMajorEntries
+    guard entries.allSatisfy(\.isFinite) else { return nil }
+    guard isAffine else {
+      guard let inverse = Self.equilibratedInverse(entries, size: 4) else {
+        return nil
+      }
+      return Matrix4(rows: inverse)
+    }
+    let linear = [m00, m01, m02, m10, m11, m12, m20, m21, m22]
+    guard let l = Self.equilibratedInverse(linear, size: 3) else { return nil }
+    let t = Vector3(m03, m13, m23)
+    let result = Matrix4(
+      l[0], l[1], l[2], -(l[0] * t.x + l[1] * t.y + l[2] * t.z),
+      l[3], l[4], l[5], -(l[3] * t.x + l[4] * t.y + l[5] * t.z),
+      l[6], l[7], l[8], -(l[6] * t.x + l[7] * t.y + l[8] * t.z),
+      0, 0, 0, 1)
+    guard result.rowMajorEntries.allSatisfy(\.isFinite) else { return nil }
+    return result
+  }
+
+  /// The inverse of a row-major size×size matrix, by Gauss–Jordan on its
+  /// power-of-two equilibration B = R·A·C, A⁻¹ = C·B⁻¹·R; nil when a pivot
+  /// is below `singularPivotThreshold` or an entry of the inverse is not
+  /// finite.
+  private static func equilibratedInverse(
+    _ matrix: [Scalar], size n: Int
+  ) -> [Scalar]? {
+    var a = matrix
+    var rowExponent = [Int](repeating: 0, count: n)
+    var columnExponent = [Int](repeating: 0, count: n)
+    for row in 0..<n {
+      let largest = (0..<n).map { a[n * row + $0].magnitude }.max() ?? 0
+      guard largest > 0 else { return nil }
+      rowExponent[row] = -Int(largest.exponent)
+      for column in 0..<n {
+        a[n * row + column] = scaled(a[n * row + column], rowExponent[row])
+      }
+    }
+    for column in 0..<n {
+      let largest = (0..<n).map { a[n * $0 + column].magnitude }.max() ?? 0
+      guard largest > 0 else { return nil }
+      columnExponent[column] = -Int(largest.exponent)
+      for row in 0..<n {
+        a[n * row + column] = scaled(
+          a[n * row + column], columnExponent[column])
+      }
+    }
+    guard var inverse = gaussJordanInverse(a, size: n) else { return nil }
+    for row in 0..<n {
+      for column in 0..<n {
+        // (C·B⁻¹·R)[i][j] = c_i · B⁻¹[i][j] · r_j.
+        let value = scaled(
+          inverse[n * row + column], columnExponent[row] + rowExponent[column])
+        guard value.isFinite else { return nil }
+        inverse[n * row + column] = value
+      }
+    }
+    return inverse
+  }
+
+  /// x·2^k, exact unless the result leaves the normal range.
+  private static func scaled(_ x: Scalar, _ k: Int) -> Scalar {
+    Scalar(sign: .plus, exponent: Scalar.Exponent(k), significand: x)
+  }
+
+  /// The inverse of an equilibrated row-major size×size matrix, or nil
+  /// when a pivot is below `singularPivotThreshold`.
+  private static func gaussJordanInverse(
+    _ matrix: [Scalar], size n: Int
+  ) -> [Scalar]? {
+    var a = matrix
+    var inverse = [Scalar](repeating: 0, count: n * n)
+    for diagonal in 0..<n { inverse[n * diagonal + diagonal] = 1 }
+    for column in 0..<n {
+      // The largest remaining entry of the column keeps multipliers ≤ 1.
+      var pivotRow = column
+      for row in (column + 1)..<n
+      where a[n * row + column].magnitude > a[n * pivotRow + column].magnitude {
+        pivotRow = row
+      }
+      let pivot = a[n * pivotRow + column]
+      guard pivot.magnitude >= singularPivotThreshold else { return nil }
+      if pivotRow != column {
+        for k in 0..<n {
+          a.swapAt(n * pivotRow + k, n * column + k)
+          inverse.swapAt(n * pivotRow + k, n * column + k)
+        }
+      }
+      for k in 0..<n {
+        a[n * column + k] /= pivot
+        inverse[n * column + k] /= pivot
+      }
+      for row in 0..<n where row != column {
+        let factor = a[n * row + column]
+        guard factor != 0 else { continue }
+        for k in 0..<n {
+          a[n * row + k] -= factor * a[n * column + k]
+          inverse[n * row + k] -= factor * inverse[n * column + k]
+        }
+      }
+    }
+    return inverse
+  }
+}
+
+// MARK: - Applying
+
+extension Matrix4 {
+  /// M·(p, 1), divided by the resulting w when the matrix is not affine.
+  ///
+  /// For an affine matrix (the usual case) no division happens, so
+  /// translations and scales by powers of two are exact. A projective matrix
+  /// that sends p to w = 0 (a point at infinity) gives non-finite components.
+  @inlinable
+  public func transformPoint(_ p: Vector3<Scalar>) -> Vector3<Scalar> {
+    let x = m00 * p.x + m01 * p.y + m02 * p.z + m03
+    let y = m10 * p.x + m11 * p.y + m12 * p.z + m13
+    let z = m20 * p.x + m21 * p.y + m22 * p.z + m23
+    if isAffine { return Vector3(x, y, z) }
+    let w = m30 * p.x + m31 * p.y + m32 * p.z + m33
+    return Vector3(x / w, y / w, z / w)
+  }
+
+  /// M·(d, 0): the upper-left 3×3 applied to d, ignoring the translation.
+  /// The result is not normalised, so that a ray's t means the same point
+  /// before and after (as the course's `Transform` does). For a projective
+  /// matrix this is the w = 0 convention, not the derivative of
+  /// `transformPoint`.
+  @inlinable
+  public func transformDirection(_ d: Vector3<Scalar>) -> Vector3<Scalar> {
+    Vector3(
+      m00 * d.x + m01 * d.y + m02 * d.z,
+      m10 * d.x + m11 * d.y + m12 * d.z,
+      m20 * d.x + m21 * d.y + m22 * d.z)
+  }
+
+  /// The unit normal of a surface transformed by this matrix, given its
+  /// normal n before: the direction of (L⁻¹)ᵀ·n, L the upper-left 3×3, so
+  /// that it stays perpendicular to every transformed tangent L·t.
+  ///
+  /// Computed as sign(det L)·cof(L)·n (cof(L) = det L·(L⁻¹)ᵀ, its rows the
+  /// cross products of L's rows), so no inverse is needed and no division
+  /// by a tiny determinant happens; the sign keeps a mirroring transform
+  /// from turning the normal inside out. Each component is within a few
+  /// ulps of the largest (cancellation only where the exact component is
+  /// small). A zero normal, or a flattening L that maps n to 0, gives NaNs;
+  /// objects under such a transform have no inverse and are never hit.
+  /// The cofactors are quadratic in L's entries, so entries beyond about
+  /// 10¹⁵⁰ (Double) or 10¹⁹ (Float) overflow them.
+  @inlinable
+  public func transformNormal(_ n: Vector3<Scalar>) -> Vector3<Scalar> {
+    let r0 = Vector3(m00, m01, m02)
+    let r1 = Vector3(m10, m11, m12)
+    let r2 = Vector3(m20, m21, m22)
+    let c0 = r1.cross(r2)
+    let determinant = r0.dot(c0)
+    let sign: Scalar = determinant < 0 ? -1 : 1
+    let cofactor = Vector3(c0.dot(n), r2.cross(r0).dot(n), r0.cross(r1).dot(n))
+    return (cofactor * sign).normalized()
+  }
+}
+
+extension Matrix4: CustomStringConvertible {
+  public var description: String {
+    "[\(m00) \(m01) \(m02) \(m03); \(m10) \(m11) \(m12) \(m13); "
+      + "\(m20) \(m21) \(m22) \(m23); \(m30) \(m31) \(m32) \(m33)]"
+  }
+}

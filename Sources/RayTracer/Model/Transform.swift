@@ -1,0 +1,134 @@
+/// An object placed by an affine matrix (the course's `Transform`): the
+/// object's points P appear at M·P.
+///
+/// Rays are taken into the object's space by M⁻¹ without renormalising the
+/// direction, so t means the same point in both spaces; normals come back
+/// by the inverse transpose.
+public struct Transform<Scalar: RayScalar>: Hashable, Sendable {
+  public var matrix: Matrix4<Scalar>
+  public var inverse: Matrix4<Scalar>
+  public var object: SceneObject<Scalar>
+
+  /// Nil when the matrix has no inverse (a scale of zero, say).
+  public init?(matrix: Matrix4<Scalar>, object: SceneObject<Scalar>) {
+    guard let inverse = matrix.inverse() else { return nil }
+    self.matrix = matrix
+    self.inverse = inverse
+    self.object = object
+  }
+}
+
+extension Transform: Intersectable {
+  public func intersect(
+    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar
+  ) -> Hit<Scalar>? {
+    let local = Ray(
+      origin: inverse.transformPoint(ray.origin),
+      direction: inverse.transformDirection(ray.direction))
+    guard var hit = object.intersect(local, after: tMin, before: tMax) else {
+      return nil
+    }
+    hit.normal = matrix.transformNormal(hit.normal)
+    return hit
+  }
+}
+
+/// A sphere under a transform that is not a similarity: an ellipsoid,
+/// intersected in the sphere's own space.
+public struct TransformedSphere<Scalar: RayScalar>: Hashable, Sendable {
+  public var sphere: Sphere<Scalar>
+  public var matrix: Matrix4<Scalar>
+  public var inverse: Matrix4<Scalar>
+}
+
+/// Every primitive of a scene graph with its transforms applied: in world
+/// space where that is exact enough (triangles, planes, spheres under
+/// similarities), as transformed spheres otherwise.
+public struct Primitives<Scalar: RayScalar>: Sendable {
+  public var spheres: [Sphere<Scalar>] = []
+  public var planes: [Plane<Scalar>] = []
+  public var triangles: [Triangle<Scalar>] = []
+  public var transformedSpheres: [TransformedSphere<Scalar>] = []
+}
+
+extension Group {
+  /// Every primitive, nested groups and transforms flattened, in file order
+  /// within each kind.
+  public func flattened() -> Primitives<Scalar> {
+    var result = Primitives<Scalar>()
+    func collect(_ object: SceneObject<Scalar>, _ transform: (Matrix4<Scalar>, Matrix4<Scalar>)?) {
+      switch object {
+      case .sphere(let sphere):
+        guard let (matrix, inverse) = transform else {
+          result.spheres.append(sphere)
+          return
+        }
+        if let scale = matrix.similarityScale {
+          result.spheres.append(
+            Sphere(
+              center: matrix.transformPoint(sphere.center), radius: sphere.radius * scale,
+              materialIndex: sphere.materialIndex))
+        } else {
+          result.transformedSpheres.append(
+            TransformedSphere(sphere: sphere, matrix: matrix, inverse: inverse))
+        }
+      case .plane(let plane):
+        guard let (matrix, _) = transform else {
+          result.planes.append(plane)
+          return
+        }
+        let normal = matrix.transformNormal(plane.normal)
+        let point = matrix.transformPoint(plane.normal * plane.offset)
+        result.planes.append(
+          Plane(normal: normal, offset: normal.dot(point), materialIndex: plane.materialIndex))
+      case .triangle(let triangle):
+        guard let (matrix, _) = transform else {
+          result.triangles.append(triangle)
+          return
+        }
+        var moved = triangle
+        moved.v0 = matrix.transformPoint(triangle.v0)
+        moved.v1 = matrix.transformPoint(triangle.v1)
+        moved.v2 = matrix.transformPoint(triangle.v2)
+        if let normals = triangle.vertexNormals {
+          moved.vertexNormals = Triangle.VertexNormals(
+            matrix.transformNormal(normals.n0), matrix.transformNormal(normals.n1),
+            matrix.transformNormal(normals.n2))
+        }
+        result.triangles.append(moved)
+      case .group(let group):
+        for child in group.objects { collect(child, transform) }
+      case .transform(let inner):
+        let combined =
+          transform.map { ($0.0 * inner.matrix, inner.inverse * $0.1) }
+          ?? (inner.matrix, inner.inverse)
+        collect(inner.object, combined)
+      }
+    }
+    for object in objects { collect(object, nil) }
+    return result
+  }
+}
+
+extension Matrix4 {
+  /// s when the linear part is s times a rotation (LᵀL = s²·I to within
+  /// 16 ε relative) and the matrix is affine: a sphere then stays a sphere
+  /// of radius r·s, and is best kept as one.
+  public var similarityScale: Scalar? {
+    guard isAffine else { return nil }
+    let columns = [
+      Vector3(m00, m10, m20), Vector3(m01, m11, m21), Vector3(m02, m12, m22),
+    ]
+    let squared = columns[0].lengthSquared
+    guard squared > 0, squared.isFinite else { return nil }
+    let tolerance = 16 * Scalar.ulpOfOne * squared
+    for i in 0..<3 {
+      for j in 0..<3 {
+        let product = columns[i].dot(columns[j])
+        let expected: Scalar = i == j ? squared : 0
+        if (product - expected).magnitude > tolerance { return nil }
+      }
+    }
+    return squared.squareRoot()
+  }
+}
