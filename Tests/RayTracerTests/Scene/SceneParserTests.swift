@@ -293,17 +293,42 @@ final class SceneParserTests: XCTestCase {
         name: "stray closing brace", text: c + "}", line: 2, column: 1,
         message: "expected a block name, found '}'"),
       Malformed(
-        name: "Transform", text: c + "Group { numObjects 1\n  Transform { } }",
-        line: 3, column: 3,
-        message: "'Transform' is not supported: raytrace renders spheres and "
-          + "planes with a PerspectiveCamera"),
+        name: "Transform without an object",
+        text: c + "Group { numObjects 1\n  Transform { } }",
+        line: 3, column: 15, message: "Transform has no object to transform"),
       Malformed(
-        name: "TriangleMesh",
-        text: c + "Group { numObjects 1 TriangleMesh { } }",
-        line: 2, column: 22,
+        name: "Transform with two objects",
+        text: c + "Group { numObjects 1\n  Transform { Translate 1 0 0 \(s) \(s) } }",
+        line: 3, column: 64,
+        message: "a Transform holds one object; group several in a Group"),
+      Malformed(
+        name: "Transform operation after the object",
+        text: c + "Group { numObjects 1 Transform { \(s) Scale 2 2 2 } }",
+        line: 2, column: 67,
+        message: "transform operations come before the object, found 'Scale'"),
+      Malformed(
+        name: "Transform scale of zero",
+        text: c + "Group { numObjects 1 Transform { Scale 1 0 1 \(s) } }",
+        line: 2, column: 40, message: "'Scale' factors must not be 0"),
+      Malformed(
+        name: "misspelt transform operation",
+        text: c + "Group { numObjects 1 Transform { Translat 1 0 0 \(s) } }",
+        line: 2, column: 34,
         message:
-          "'TriangleMesh' is not supported: raytrace renders spheres and "
-          + "planes with a PerspectiveCamera"),
+          "expected a transform operation or an object, found 'Translat'; did you mean 'Translate'?"),
+      Malformed(
+        name: "TriangleMesh without its file",
+        text: c + "Group { numObjects 1 TriangleMesh { } }",
+        line: 2, column: 37, message: "TriangleMesh is missing 'obj_file'"),
+      Malformed(
+        name: "TriangleMesh whose file does not exist",
+        text: c + "Group { numObjects 1 TriangleMesh { obj_file nowhere.obj } }",
+        line: 2, column: 46,
+        message: "cannot read 'nowhere.obj': cannot open the file: No such file or directory"),
+      Malformed(
+        name: "Triangle missing a vertex",
+        text: c + "Group { numObjects 1 Triangle { vertex0 0 0 0 vertex1 1 0 0 } }",
+        line: 2, column: 61, message: "Triangle is missing 'vertex2'"),
       Malformed(
         name: "OrthographicCamera", text: "OrthographicCamera { }", line: 1,
         column: 1,

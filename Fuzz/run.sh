@@ -1,0 +1,138 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer harnesses with swiftc and runs one of them.
+#
+#   Fuzz/run.sh [scene|cli] [LIBFUZZER OPTION...]
+#   Fuzz/run.sh build            # build both fuzzers, run nothing
+#
+#   Fuzz/run.sh scene -runs=10000000
+#   Fuzz/run.sh cli -max_total_time=600
+#   Fuzz/run.sh scene .build/fuzz/crash-scene/crash-1234   # replay one input
+#
+# Harnesses: Fuzz/FuzzSceneParser.swift (scene files, then a 4x3 render of
+# whatever parses) and Fuzz/FuzzCommandLine.swift (arguments split at NUL
+# bytes, parsed and validated, never run). See each file's header for what
+# it checks.
+#
+# Why not SwiftPM: it cannot build a libFuzzer target (its products would
+# get libFuzzer's main), so each module is compiled here with swiftc, the
+# same sources SwiftPM compiles, instrumented with -sanitize=fuzzer,address:
+#   RealModule, ArgumentParser     the stand-ins, as they are
+#   RayTracer                      -enable-testing: the fuzzer reaches the
+#                                  internal SceneParser.parse(bytes:file:)
+#   raytrace                       the executable's sources, @main included,
+#                                  its entry point renamed raytrace_main (as
+#                                  SwiftPM does when tests link an executable)
+# Everything goes to .build/fuzz/ (git-ignored): objects, the fuzzers, the
+# working corpora corpus-scene/ and corpus-cli/ (libFuzzer adds what it finds
+# there; the committed seeds in Fuzz/corpus/ are read, never written), and
+# crash-scene/ and crash-cli/ for inputs that fail.
+#
+# Environment:
+#   FUZZ_OPT="-Onone"   optimisation (default -O: measured 7,000 executions
+#                       per second on the scene fuzzer against 1,400 with
+#                       -Onone, which finds slightly more edges per input)
+#   FUZZ_STRICT=1       scene fuzzer: also require finite unit normals and
+#                       finite colours of every hit (see the harness)
+#   SWIFTC              the compiler (default: swiftc on PATH)
+#
+# Defaults passed to libFuzzer, overridable by repeating the option:
+# -timeout=10 (an input taking seconds is a finding), -rss_limit_mb=2048,
+# -print_final_stats=1, the dictionary of the format's keywords. One worker:
+# the machine's other core is left free.
+set -euo pipefail
+
+cd "$(dirname "$0")/.."
+swiftc=${SWIFTC:-swiftc}
+opt=${FUZZ_OPT:--O}
+mode=${1:-scene}
+[ $# -gt 0 ] && shift
+
+build=.build/fuzz
+objects=$build/obj${opt// /}
+mkdir -p "$objects"
+flags=(-parse-as-library -wmo -gline-tables-only $opt -sanitize=fuzzer,address)
+
+# Compiles module $1 from the .swift files under $2 unless its object is
+# newer than all of them; extra swiftc flags follow.
+compile() {
+  local module=$1 folder=$2
+  shift 2
+  local object=$objects/$module.o
+  if [ -f "$object" ] && [ -z "$(find "$folder" -name '*.swift' -newer "$object")" ]; then
+    return
+  fi
+  echo "compiling $module" >&2
+  local sources
+  mapfile -t sources < <(find "$folder" -name '*.swift' | sort)
+  "$swiftc" "${flags[@]}" -module-name "$module" -I "$objects" "$@" \
+    -emit-module -emit-module-path "$objects/$module.swiftmodule" \
+    -c "${sources[@]}" -o "$object"
+}
+
+build_scene() {
+  compile RealModule Sources/RealModule
+  compile RayTracer Sources/RayTracer -enable-testing \
+    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap
+  echo "linking fuzz-scene" >&2
+  "$swiftc" "${flags[@]}" -I "$objects" \
+    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap \
+    Fuzz/FuzzSceneParser.swift "$objects/RayTracer.o" "$objects/RealModule.o" \
+    -lz -use-ld=lld -o "$objects/fuzz-scene"
+}
+
+build_cli() {
+  compile RealModule Sources/RealModule
+  compile RayTracer Sources/RayTracer -enable-testing \
+    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap
+  compile ArgumentParser Sources/ArgumentParser
+  compile raytrace Sources/raytrace -enable-testing \
+    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap \
+    -Xfrontend -entry-point-function-name -Xfrontend raytrace_main
+  echo "linking fuzz-cli" >&2
+  "$swiftc" "${flags[@]}" -I "$objects" \
+    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap \
+    Fuzz/FuzzCommandLine.swift "$objects/raytrace.o" \
+    "$objects/ArgumentParser.o" "$objects/RayTracer.o" \
+    "$objects/RealModule.o" -lz -use-ld=lld -o "$objects/fuzz-cli"
+}
+
+case $mode in
+  build)
+    build_scene
+    build_cli
+    exit 0
+    ;;
+  scene)
+    build_scene
+    dictionary=Fuzz/scene.dict
+    ;;
+  cli)
+    build_cli
+    dictionary=Fuzz/cli.dict
+    ;;
+  *)
+    echo "usage: Fuzz/run.sh [scene|cli|build] [libFuzzer option...]" >&2
+    exit 64
+    ;;
+esac
+
+corpus=$build/corpus-$mode
+crashes=$build/crash-$mode
+mkdir -p "$corpus" "$crashes"
+
+# An argument that names a file replays it (and any others) instead of
+# fuzzing the corpora.
+inputs=("$corpus" "Fuzz/corpus/$mode")
+for argument in "$@"; do
+  if [ -f "$argument" ]; then
+    inputs=()
+    break
+  fi
+done
+
+# The Swift runtime's backtracer would take the trap of a failed check
+# before libFuzzer (which leaves a handler already installed alone), and
+# then neither save the input nor exit.
+export SWIFT_BACKTRACE=enable=no
+exec "$objects/fuzz-$mode" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+  -dict="$dictionary" -artifact_prefix="$crashes/" "$@" "${inputs[@]}"
