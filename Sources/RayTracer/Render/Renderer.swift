@@ -34,7 +34,7 @@ public enum Renderer {
     let height = settings.height
     let count = width * height
     let outputs = settings.outputs
-    let camera = PerspectiveCamera<RayPrecision>(scene.camera)
+    let camera = PerspectiveCamera<RayPrecision>(scene.camera).styled(settings.style)
     // Left uninitialised: every pixel of every requested buffer is written
     // exactly once below, so zeroing them first would only cost a pass
     // over memory on one thread.
