@@ -269,7 +269,9 @@ struct Render: ParsableCommand {
     let settings = report.settings
     printError(
       "scene: \(scenePath): \(report.spheres) spheres, \(report.planes) planes, "
-        + "BVH \(report.usesHierarchy ? "used" : "not used")")
+        + "\(report.triangles) triangles, \(report.ellipsoids) transformed spheres; "
+        + "BVH over spheres \(report.usesHierarchy ? "used" : "not used"), "
+        + "over triangles \(report.usesTriangleHierarchy ? "used" : "not used")")
     printError(
       "size: \(settings.width)x\(settings.height), \(report.rays) rays, "
         + "precision \(settings.precision.rawValue), intersection \(settings.method.rawValue), "

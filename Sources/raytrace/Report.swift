@@ -41,6 +41,16 @@ struct Report: ParsableCommand {
       valueName: "dir"))
   var heatmaps: String?
 
+  @Flag(help: "Leave out the antialiasing rows (shaded image, 1 to 64 samples against 1024).")
+  var skipAntialiasing = false
+
+  private var antialiasingHeader: String {
+    """
+    | scene | size | samples | time (ms) | RMS error vs 1024 samples | max error (levels) |
+    |---|---|---:|---:|---:|---:|
+    """
+  }
+
   static let defaultScenes = [
     "scenes/spheres.txt", "scenes/spheres-only.txt", "scenes/single-sphere.txt",
   ]
@@ -98,6 +108,31 @@ struct Report: ParsableCommand {
                 "\(heatmaps)/\(name)-\(precision.rawValue)-\(method.rawValue).png"
               ))
           }
+        }
+      }
+    }
+    if !skipAntialiasing {
+      print()
+      print(antialiasingHeader)
+      for path in scenes.isEmpty ? Self.defaultScenes : paths {
+        let scene: Scene
+        do {
+          scene = try SceneParser.parse(contentsOf: path)
+        } catch {
+          printError(error.description)
+          throw ExitCode.failure
+        }
+        // Half the size: the 1024-sample reference is a thousand renders.
+        let (w, h) = (max(1, width / 2), max(1, height / 2))
+        let (reference, _) = AntialiasingMeasurement.render(
+          scene, width: w, height: h, samples: 1024, threads: threads, runs: 0)
+        for samples in [1, 4, 16, 64] {
+          let (color, seconds) = AntialiasingMeasurement.render(
+            scene, width: w, height: h, samples: samples, threads: threads, runs: runs)
+          let m = AntialiasingMeasurement(color, against: reference)
+          print(
+            "| \(sceneName(path)) | \(w)×\(h) | \(samples) | \(formatted(seconds * 1000, digits: 3)) | "
+              + "\(scientific(m.rootMeanSquare)) | \(formatted(m.maxLevels, digits: 3)) |")
         }
       }
     }

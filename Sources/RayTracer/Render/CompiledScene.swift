@@ -35,6 +35,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   public var sphereCount: Int { spheres.count }
   public var planeCount: Int { planes.count }
   public var usesHierarchy: Bool { hierarchy != nil }
+  public var usesTriangleHierarchy: Bool { triangleHierarchy != nil }
 
   /// - Parameter hierarchyThreshold: the sphere count from which a BVH is
   ///   built (see `BoundingVolumeHierarchy.defaultThreshold`).

@@ -28,6 +28,9 @@ public struct RenderReport: Sendable {
   public var spheres: Int
   public var planes: Int
   public var usesHierarchy: Bool
+  public var triangles: Int = 0
+  public var ellipsoids: Int = 0
+  public var usesTriangleHierarchy = false
   public var compileSeconds: Double
   public var renderSeconds: Double
   public var writeSeconds: Double
@@ -111,10 +114,14 @@ public enum RenderJob {
     }
     let encoded = files.indices.map { (encodedFiles.bytes(at: $0), files[$0].path) }
     try AtomicFile.writeAll(encoded)
-    return RenderReport(
+    var report = RenderReport(
       settings: settings, spheres: compiled.sphereCount, planes: compiled.planeCount,
       usesHierarchy: compiled.usesHierarchy, compileSeconds: compileSeconds,
       renderSeconds: renderSeconds, writeSeconds: clock.lap(), depthRange: usedRange)
+    report.triangles = compiled.triangleCount
+    report.ellipsoids = compiled.ellipsoidCount
+    report.usesTriangleHierarchy = compiled.usesTriangleHierarchy
+    return report
   }
 
   static func rawImage<S: RayScalar>(

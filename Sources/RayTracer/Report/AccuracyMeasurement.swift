@@ -166,3 +166,47 @@ public func median(_ values: [Double]) -> Double {
   let middle = sorted.count / 2
   return sorted.count % 2 == 1 ? sorted[middle] : (sorted[middle - 1] + sorted[middle]) / 2
 }
+
+/// How far a supersampled shaded image is from a reference with many more
+/// samples: the error antialiasing leaves, in the displayed (clamped)
+/// colour.
+public struct AntialiasingMeasurement: Sendable {
+  /// Root mean square over pixels and channels, colour in [0, 1].
+  public var rootMeanSquare: Double
+  /// The largest difference of any channel, in 8-bit levels.
+  public var maxLevels: Double
+
+  public init(_ image: [RGB<Double>], against reference: [RGB<Double>]) {
+    precondition(image.count == reference.count)
+    var squares = 0.0
+    var largest = 0.0
+    for (a, b) in zip(image, reference) {
+      let difference = a.clampedToUnit() - b.clampedToUnit()
+      squares += difference.lengthSquared
+      largest = Swift.max(largest, difference.maxMagnitude)
+    }
+    rootMeanSquare = (squares / Double(Swift.max(3 * image.count, 1))).squareRoot()
+    maxLevels = largest * 255
+  }
+
+  /// The shaded image of `scene` with `samples` rays per pixel (stable,
+  /// Double) and the median time of `runs` renders after a warm-up.
+  public static func render(
+    _ scene: Scene, width: Int, height: Int, samples: Int, filter: PixelFilter = .box,
+    threads: Int, runs: Int
+  ) -> (color: [RGB<Double>], medianSeconds: Double) {
+    var settings = RenderSettings(
+      width: width, height: height, outputs: [.shaded], threads: threads)
+    settings.samples = samples
+    settings.filter = filter
+    let compiled = CompiledScene<StableKernel<Double>>(scene)
+    var buffers = Renderer.render(compiled, settings: settings)
+    var times: [Double] = []
+    for _ in 0..<runs {
+      var clock = Stopwatch()
+      buffers = Renderer.render(compiled, settings: settings)
+      times.append(clock.lap())
+    }
+    return (buffers.color, runs > 0 ? median(times) : .nan)
+  }
+}

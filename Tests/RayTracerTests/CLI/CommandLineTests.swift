@@ -211,6 +211,7 @@ final class CommandLineTests: XCTestCase {
   func testReport_OneSceneMarkdownAndCSV() throws {
     let outcome = try run([
       "report", "scenes/single-sphere.txt", "--size", "16", "16", "--runs", "1",
+      "--skip-antialiasing",
       "--csv", folder + "/r.csv", "--heatmaps", folder,
     ])
     XCTAssertEqual(outcome.status, 0, outcome.stderr)
@@ -240,5 +241,39 @@ final class CommandLineTests: XCTestCase {
     XCTAssertEqual(process.terminationReason, .uncaughtSignal)
     XCTAssertEqual(files(), ["old.png"], "no new or temporary file may remain")
     XCTAssertEqual(try read("old.png"), [1, 2, 3], "the old file must be untouched")
+  }
+
+  func testReport_AntialiasingRows() throws {
+    let outcome = try run([
+      "report", "scenes/single-sphere.txt", "--size", "8", "8", "--runs", "1",
+    ])
+    XCTAssertEqual(outcome.status, 0, outcome.stderr)
+    let rows = outcome.stdout.split(separator: "\n").filter { $0.hasPrefix("| single-sphere | 4×4 |") }
+    XCTAssertEqual(rows.map { $0.split(separator: "|")[2].trimmingCharacters(in: .whitespaces) }, ["1", "4", "16", "64"])
+  }
+
+  func testRender_MeshAndTransformsScene() throws {
+    let outcome = try run([
+      "scenes/mesh-and-transforms.txt", "--size", "40", "30", "-o", folder + "/m.png", "--stats",
+    ])
+    XCTAssertEqual(outcome.status, 0, outcome.stderr)
+    XCTAssertTrue(outcome.stderr.contains("21 triangles, 1 transformed spheres"), outcome.stderr)
+  }
+
+  func testRender_SupersamplingIsTheSameForAnyThreadCount() throws {
+    for threads in ["1", "2"] {
+      let outcome = try run([
+        "scenes/spheres.txt", "--size", "32", "24", "--samples", "9", "--filter", "tent",
+        "--threads", threads, "-o", folder + "/aa\(threads).pfm",
+      ])
+      XCTAssertEqual(outcome.status, 0, outcome.stderr)
+    }
+    XCTAssertEqual(try read("aa1.pfm"), try read("aa2.pfm"))
+  }
+
+  func testUsage_SamplesMustBeASquare() throws {
+    let outcome = try run(["scenes/spheres.txt", "-o", folder + "/a.png", "--samples", "5"])
+    XCTAssertEqual(outcome.status, 64)
+    XCTAssertTrue(outcome.stderr.contains("--samples must be a square"), outcome.stderr)
   }
 }
