@@ -834,17 +834,37 @@ func editDistance(_ a: [UInt8], _ b: [UInt8]) -> Int {
   return previous[b.count]
 }
 
+/// 4 GiB: a scene of tens of millions of spheres, or a mesh of a hundred
+/// million triangles.
+let maximumFileSize = 1 << 32
+
 struct FileReadError: Error {
   var reason: String
 }
 
 /// The whole file in one read; errors carry the system's reason.
+///
+/// Only regular files up to `maximumFileSize` are read: a device such as
+/// /dev/zero, a FIFO or a directory named as a scene or a mesh would
+/// otherwise hang the program or exhaust its memory.
 func readFile(_ path: String) throws(FileReadError) -> [UInt8] {
   guard let handle = fopen(path, "rb") else {
     throw FileReadError(reason: "cannot open the file: \(String(cString: strerror(errno)))")
   }
   defer { fclose(handle) }
+  var status = stat()
+  guard fstat(fileno(handle), &status) == 0 else {
+    throw FileReadError(reason: "cannot read the file: \(String(cString: strerror(errno)))")
+  }
+  guard (status.st_mode & S_IFMT) == S_IFREG else {
+    throw FileReadError(reason: "not a regular file")
+  }
+  guard Int(status.st_size) <= maximumFileSize else {
+    throw FileReadError(
+      reason: "the file is \(status.st_size) bytes; the limit is \(maximumFileSize)")
+  }
   var bytes: [UInt8] = []
+  bytes.reserveCapacity(Int(status.st_size))
   var chunk = [UInt8](repeating: 0, count: 1 << 20)
   while true {
     let read = chunk.withUnsafeMutableBytes { fread($0.baseAddress, 1, $0.count, handle) }

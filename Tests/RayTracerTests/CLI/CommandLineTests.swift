@@ -276,4 +276,18 @@ final class CommandLineTests: XCTestCase {
     XCTAssertEqual(outcome.status, 64)
     XCTAssertTrue(outcome.stderr.contains("--samples must be a square"), outcome.stderr)
   }
+
+  func testSceneError_DevicesAreRefusedNotRead() throws {
+    // /dev/zero never ends: read, it would exhaust memory.
+    var outcome = try run(["/dev/zero", "-o", folder + "/a.png"])
+    XCTAssertEqual(outcome.status, 1)
+    XCTAssertEqual(outcome.stderr, "/dev/zero: error: not a regular file\n")
+    let scene = folder + "/mesh.txt"
+    try "PerspectiveCamera { center 0 0 5 direction 0 0 -1 up 0 1 0 angle 30 }\nGroup { numObjects 1 TriangleMesh { obj_file /dev/zero } }\n"
+      .write(toFile: scene, atomically: true, encoding: .utf8)
+    outcome = try run([scene, "-o", folder + "/a.png"])
+    XCTAssertEqual(outcome.status, 1)
+    XCTAssertEqual(
+      outcome.stderr, "\(scene):2:46: error: cannot read '/dev/zero': not a regular file\n")
+  }
 }
