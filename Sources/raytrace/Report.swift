@@ -193,8 +193,8 @@ struct AccuracyRow {
   var megaraysPerSecond: Double { Double(width * height) / seconds / 1e6 }
 
   static let markdownHeader = """
-    | scene | precision | method | time (ms) | Mrays/s | max rel. error of t | p99 rel. error | max (ε) | hit/miss disagreements | max normal error (°) |
-    |---|---|---|---:|---:|---:|---:|---:|---:|---:|
+    | scene | precision | method | time (ms) | Mrays/s | max rel. error of t | p99 | max (ε) | max off silhouettes (ε) | hit/miss disagreements | max normal error (°) |
+    |---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|
     """
 
   var markdown: String {
@@ -202,20 +202,22 @@ struct AccuracyRow {
     return "| \(scene) | \(precision.rawValue) | \(method.rawValue) | "
       + "\(formatted(seconds * 1000, digits: 3)) | \(formatted(megaraysPerSecond, digits: 3)) | "
       + "\(scientific(m.maxRelativeError)) | \(scientific(m.p99RelativeError)) | "
-      + "\(scientific(m.maxRelativeError / epsilon)) | \(m.disagreements) | "
+      + "\(scientific(m.maxRelativeError / epsilon)) | "
+      + "\(scientific(m.maxInteriorRelativeError / epsilon)) | \(m.disagreements) | "
       + "\(scientific(m.maxNormalErrorDegrees)) |"
   }
 
   static let csvHeader =
     "scene,precision,method,width,height,seconds,mrays_per_s,max_rel_error,p99_rel_error,"
-    + "max_rel_error_eps,disagreements,compared_hits,max_normal_error_deg"
+    + "max_rel_error_eps,max_interior_rel_error_eps,disagreements,compared_hits,max_normal_error_deg"
 
   var csv: String {
     let m = measurement
     return [
       scene, precision.rawValue, method.rawValue, "\(width)", "\(height)", "\(seconds)",
       "\(megaraysPerSecond)", "\(m.maxRelativeError)", "\(m.p99RelativeError)",
-      "\(m.maxRelativeError / epsilon)", "\(m.disagreements)", "\(m.comparedHits)",
+      "\(m.maxRelativeError / epsilon)", "\(m.maxInteriorRelativeError / epsilon)",
+      "\(m.disagreements)", "\(m.comparedHits)",
       "\(m.maxNormalErrorDegrees)",
     ].joined(separator: ",")
   }

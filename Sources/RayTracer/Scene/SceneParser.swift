@@ -549,20 +549,31 @@ public struct SceneParser {
 
   private mutating func parsePlane(material: Int) throws(SceneError) -> Plane<Double> {
     var normal: Vector3<Double>?
-    var offset: Double?
+    var offset: (Double, SceneToken)?
     let close = try parseFields(
       "Plane", ["normal", "offset"]
     ) { (parser: inout SceneParser, field: String) throws(SceneError) in
       if field == "normal" {
         normal = try parser.nonZeroVector(field)
       } else {
-        offset = try parser.number()
+        let token = parser.peekStart()
+        offset = (try parser.number(), token)
       }
     }
     guard let normal, let offset else {
       throw missing("Plane", [("normal", normal != nil), ("offset", offset != nil)], close)
     }
-    return Plane(normal: normal, offset: offset, materialIndex: material)
+    let plane = Plane(normal: normal, offset: offset.0, materialIndex: material)
+    // Dividing by the normal's length overflows for a tiny normal and a
+    // large offset (`normal 0 0 1e-150  offset 1e300`): the plane lies
+    // beyond Double's range, and an infinite offset must not reach a render.
+    guard plane.offset.isFinite else {
+      throw error(
+        at: offset.1,
+        "the plane is too far from the origin: offset \(text(offset.1)) divided "
+          + "by the normal's length is not a finite number")
+    }
+    return plane
   }
 
   // MARK: - Fields and values

@@ -256,6 +256,28 @@ final class FuzzRegressionTests: XCTestCase {
       "Groups are nested more than \(depth) deep")
   }
 
+  // MARK: - Planes
+
+  /// Found by the fuzzer's check that a parsed scene holds only finite
+  /// numbers: `Plane` divides the offset by the normal's length, which
+  /// overflowed to an infinite offset for a tiny normal and a large offset.
+  /// The plane now fails at its offset.
+  func testPlane_OffsetOverTinyNormalOverflows() {
+    assertError(
+      Self.camera + "Group { numObjects 1 Plane { normal 0 0 1e-150 offset 1e300 } }",
+      line: 2, column: 55,
+      "the plane is too far from the origin: offset 1e300 divided by the "
+        + "normal's length is not a finite number")
+  }
+
+  /// The same tiny normal with an offset to match is the plane z = 1.
+  func testPlane_TinyNormalWithMatchingOffset() throws {
+    let scene = try parse(
+      Self.camera + "Group { numObjects 1 Plane { normal 0 0 1e-150 offset 1e-150 } }")
+    XCTAssertEqual(
+      scene.root, Group([.plane(Plane(normal: Vector3(0, 0, 1), offset: 1))]))
+  }
+
   // MARK: - Numbers
 
   /// Exponents and mantissas far beyond Double's range: infinity is
