@@ -204,3 +204,27 @@ extension Vector3 {
   /// The vector in ReferenceScalar, exactly (every Float and Double is one).
   var reference: Vector3<ReferenceScalar> { Vector3<ReferenceScalar>(self) }
 }
+
+// MARK: - Scene errors
+
+/// Asserts that `error` is one well-formed line whose position lies within
+/// `bytes` (a column may point just past a line's end).
+func assertWellFormed(
+  _ error: SceneError, in bytes: [UInt8], seed: UInt64,
+  file: StaticString = #filePath, line: UInt = #line
+) {
+  let description = error.description
+  XCTAssertFalse(description.contains("\n"), "seed \(seed): more than one line", file: file, line: line)
+  XCTAssertTrue(
+    description.hasPrefix("\(error.file):\(error.line):\(error.column): error: "),
+    "seed \(seed): malformed description \(description.debugDescription)", file: file, line: line)
+  let lines = bytes.split(separator: UInt8(ascii: "\n"), omittingEmptySubsequences: false)
+  XCTAssertTrue(
+    (1...lines.count).contains(error.line),
+    "seed \(seed): line \(error.line) of \(lines.count)", file: file, line: line)
+  if (1...lines.count).contains(error.line) {
+    XCTAssertTrue(
+      (1...(lines[error.line - 1].count + 1)).contains(error.column),
+      "seed \(seed): column \(error.column) on line \(error.line)", file: file, line: line)
+  }
+}

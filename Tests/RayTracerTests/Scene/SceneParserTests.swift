@@ -635,7 +635,6 @@ final class SceneParserTests: XCTestCase {
   /// bytes deleted or inserted) either parse or throw one well-formed
   /// one-line error pointing inside the text. A trap would end the run.
   func testParse_MutatedScenesNeverTrap() throws {
-    let format = try Regex(#"^test\.txt:([0-9]+):([0-9]+): error: [^\n]+$"#)
     let original = Array(Self.full.utf8)
     let replacements = [
       "{", "}", "Group", "Sphere", "Plane", "MaterialIndex", "numObjects", "-1",
@@ -657,21 +656,7 @@ final class SceneParserTests: XCTestCase {
         outcomes.parsed += 1
       } catch {
         outcomes.failed += 1
-        let description = error.description
-        XCTAssertNotNil(
-          try? format.wholeMatch(in: description),
-          "seed \(seed): malformed description \(description.debugDescription)")
-        // The position lies within the text (or just past its end).
-        let lines = text.utf8.split(
-          separator: UInt8(ascii: "\n"), omittingEmptySubsequences: false)
-        XCTAssertTrue(
-          (1...lines.count).contains(error.line),
-          "seed \(seed): line \(error.line) of \(lines.count)")
-        if (1...lines.count).contains(error.line) {
-          XCTAssertTrue(
-            (1...(lines[error.line - 1].count + 1)).contains(error.column),
-            "seed \(seed): column \(error.column) on line \(error.line)")
-        }
+        assertWellFormed(error, in: Array(text.utf8), seed: seed)
       }
     }
     print("mutated scenes: \(outcomes)")
