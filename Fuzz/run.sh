@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer harnesses with swiftc and runs one of them.
 #
-#   Fuzz/run.sh [scene|cli] [LIBFUZZER OPTION...]
-#   Fuzz/run.sh build            # build both fuzzers, run nothing
+#   Fuzz/run.sh [scene|cli|obj] [LIBFUZZER OPTION...]
+#   Fuzz/run.sh build            # build every fuzzer, run nothing
 #
 #   Fuzz/run.sh scene -runs=10000000
 #   Fuzz/run.sh cli -max_total_time=600
@@ -10,8 +10,9 @@
 #
 # Harnesses: Fuzz/FuzzSceneParser.swift (scene files, then a 4x3 render of
 # whatever parses) and Fuzz/FuzzCommandLine.swift (arguments split at NUL
-# bytes, parsed and validated, never run). See each file's header for what
-# it checks.
+# bytes, parsed and validated, never run) and Fuzz/FuzzOBJReader.swift (OBJ
+# files: a mesh with indices in range, or one well-formed error). See each
+# file's header for what it checks.
 #
 # Why not SwiftPM: it cannot build a libFuzzer target (its products would
 # get libFuzzer's main), so each module is compiled here with swiftc, the
@@ -80,6 +81,17 @@ build_scene() {
     -lz -use-ld=lld -o "$objects/fuzz-scene"
 }
 
+build_obj() {
+  compile RealModule Sources/RealModule
+  compile RayTracer Sources/RayTracer -enable-testing \
+    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap
+  echo "linking fuzz-obj" >&2
+  "$swiftc" "${flags[@]}" -I "$objects" \
+    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap \
+    Fuzz/FuzzOBJReader.swift "$objects/RayTracer.o" "$objects/RealModule.o" \
+    -lz -use-ld=lld -o "$objects/fuzz-obj"
+}
+
 build_cli() {
   compile RealModule Sources/RealModule
   compile RayTracer Sources/RayTracer -enable-testing \
@@ -100,7 +112,12 @@ case $mode in
   build)
     build_scene
     build_cli
+    build_obj
     exit 0
+    ;;
+  obj)
+    build_obj
+    dictionary=Fuzz/obj.dict
     ;;
   scene)
     build_scene
@@ -111,7 +128,7 @@ case $mode in
     dictionary=Fuzz/cli.dict
     ;;
   *)
-    echo "usage: Fuzz/run.sh [scene|cli|build] [libFuzzer option...]" >&2
+    echo "usage: Fuzz/run.sh [scene|cli|obj|build] [libFuzzer option...]" >&2
     exit 64
     ;;
 esac
