@@ -11,7 +11,8 @@
 //   control characters, with the position inside the input (or just past
 //   its end);
 // - a parsed scene has materials, every MaterialIndex in range, a finite
-//   camera basis, spheres with finite centres and radii > 0, unit normals;
+//   camera basis and, after its transforms, spheres with finite centres and
+//   radii > 0, planes with unit normals, finite triangles and ellipsoids;
 // - every depth is +inf (a miss) or finite and > 0, and a miss has a zero
 //   normal;
 // - a number the fast decimal parser accepts equals the standard library's
@@ -136,20 +137,39 @@ func checkScene(_ scene: Scene) {
   else {
     fail("a camera without a finite basis: \(camera)")
   }
-  let (spheres, planes) = scene.root.primitives()
-  for sphere in spheres {
+  // Transforms applied: the parser refuses what they take beyond Double.
+  let primitives = scene.root.flattened()
+  for sphere in primitives.spheres {
     guard sphere.center.isFinite, sphere.radius.isFinite, sphere.radius > 0
     else { fail("a sphere that should not have parsed: \(sphere)") }
     guard scene.materials.indices.contains(sphere.materialIndex) else {
       fail("sphere material \(sphere.materialIndex) of \(scene.materials.count)")
     }
   }
-  for plane in planes {
+  for plane in primitives.planes {
     guard plane.normal.isFinite, plane.offset.isFinite,
       (plane.normal.length - 1).magnitude < 1e-12
     else { fail("a plane that should not have parsed: \(plane)") }
     guard scene.materials.indices.contains(plane.materialIndex) else {
       fail("plane material \(plane.materialIndex) of \(scene.materials.count)")
+    }
+  }
+  for triangle in primitives.triangles {
+    guard triangle.v0.isFinite, triangle.v1.isFinite, triangle.v2.isFinite else {
+      fail("a triangle that should not have parsed: \(triangle)")
+    }
+    guard scene.materials.indices.contains(triangle.materialIndex) else {
+      fail("triangle material \(triangle.materialIndex) of \(scene.materials.count)")
+    }
+  }
+  for ellipsoid in primitives.transformedSpheres {
+    guard ellipsoid.matrix.rowMajorEntries.allSatisfy(\.isFinite),
+      ellipsoid.inverse.rowMajorEntries.allSatisfy(\.isFinite)
+    else { fail("an ellipsoid that should not have parsed: \(ellipsoid)") }
+    guard scene.materials.indices.contains(ellipsoid.sphere.materialIndex) else {
+      fail(
+        "ellipsoid material \(ellipsoid.sphere.materialIndex) of "
+          + "\(scene.materials.count)")
     }
   }
   for light in scene.lights {
@@ -190,13 +210,21 @@ func isModest(_ scene: Scene) -> Bool {
       add(color)
     }
   }
-  let (spheres, planes) = scene.root.primitives()
-  for sphere in spheres {
+  let primitives = scene.root.flattened()
+  for sphere in primitives.spheres {
     add(sphere.center)
     values.append(sphere.radius)
   }
-  for plane in planes {
+  for plane in primitives.planes {
     add(plane.normal * plane.offset)
+  }
+  for triangle in primitives.triangles {
+    add(triangle.v0)
+    add(triangle.v1)
+    add(triangle.v2)
+  }
+  for ellipsoid in primitives.transformedSpheres {
+    values += ellipsoid.matrix.rowMajorEntries
   }
   return values.allSatisfy { $0 == 0 || (1e-6...1e6).contains($0.magnitude) }
 }

@@ -47,6 +47,9 @@ public struct SceneParser {
   /// depth, allocates no more than the file could fill.
   private(set) var reservedObjects = 0
   private let objectBudget: Int
+  /// Transforms open at the current position: only the outermost one checks
+  /// the geometry it produces, so each primitive is moved and checked once.
+  private var openTransforms = 0
 
   /// Parses `text`; `file` names it in messages.
   public static func parse(_ text: String, file: String) throws(SceneError) -> Scene {
@@ -411,6 +414,8 @@ public struct SceneParser {
     _ start: SceneToken, depth: Int, material: Int
   ) throws(SceneError) -> Transform<Double> {
     try expect(.open, "'{' after Transform")
+    openTransforms += 1
+    defer { openTransforms -= 1 }
     var matrix = Matrix4<Double>.identity
     var object: SceneObject<Double>?
     while true {
@@ -420,8 +425,16 @@ public struct SceneParser {
         guard let object else {
           throw error(at: token, "Transform has no object to transform")
         }
+        // Overflowing operations (`Translate 1e308 0 0` twice) leave
+        // infinities, for which "no inverse" would be the wrong reason.
+        guard matrix.rowMajorEntries.allSatisfy(\.isFinite) else {
+          throw error(at: start, "the Transform's matrix overflows: its entries are not all finite")
+        }
         guard let transform = Transform(matrix: matrix, object: object) else {
           throw error(at: start, "the Transform's matrix has no inverse (a scale of 0?)")
+        }
+        if openTransforms == 1 {
+          try checkMovedGeometry(transform, start)
         }
         return transform
       case .end, .open:
@@ -471,6 +484,38 @@ public struct SceneParser {
     }
   }
 
+  /// Refuses geometry that a Transform takes beyond Double's range: each
+  /// number of the file is finite, but a product of finite matrices, or a
+  /// finite matrix applied to a point, need not be (`UniformScale 1e300`
+  /// of `offset 1e300`), nor need a scaled radius stay above 0. The render
+  /// would otherwise meet infinities and NaN normals.
+  private func checkMovedGeometry(
+    _ transform: Transform<Double>, _ start: SceneToken
+  ) throws(SceneError) {
+    let moved = Group([.transform(transform)]).flattened()
+    let finite =
+      moved.spheres.allSatisfy {
+        $0.center.isFinite && $0.radius.isFinite && $0.radius > 0
+      }
+      && moved.planes.allSatisfy { $0.normal.isFinite && $0.offset.isFinite }
+      && moved.triangles.allSatisfy { triangle in
+        triangle.v0.isFinite && triangle.v1.isFinite && triangle.v2.isFinite
+          && (triangle.vertexNormals.map {
+            $0.n0.isFinite && $0.n1.isFinite && $0.n2.isFinite
+          } ?? true)
+      }
+      && moved.transformedSpheres.allSatisfy {
+        $0.matrix.rowMajorEntries.allSatisfy(\.isFinite)
+          && $0.inverse.rowMajorEntries.allSatisfy(\.isFinite)
+      }
+    guard finite else {
+      throw error(
+        at: start,
+        "the Transform takes its object beyond Double's range: a coordinate, "
+          + "offset or normal is no longer finite, or a radius becomes 0")
+    }
+  }
+
   private mutating func parseTriangle(material: Int) throws(SceneError) -> Triangle<Double> {
     var vertices: [Vector3<Double>?] = [nil, nil, nil]
     let close = try parseFields(
@@ -499,7 +544,9 @@ public struct SceneParser {
       guard token.kind == .word else {
         throw parser.error(at: token, "expected the OBJ file's path after 'obj_file'")
       }
-      path = (parser.text(token), token)
+      // The path as written: `text` escapes control characters, which
+      // would name another file.
+      path = (parser.tokenizer.text(of: token), token)
     }
     guard let (relative, token) = path else {
       throw missing("TriangleMesh", [("obj_file", false)], close)
@@ -519,7 +566,8 @@ public struct SceneParser {
       // A file that cannot be opened is reported at the scene's reference
       // to it; errors inside the OBJ file at their own position.
       if error.line == 0 {
-        throw self.error(at: token, "cannot read '\(resolved)': \(error.message)")
+        throw self.error(
+          at: token, "cannot read '\(Self.escaped(resolved))': \(error.message)")
       }
       throw error
     }
@@ -738,11 +786,15 @@ public struct SceneParser {
   /// control characters and line separators are escaped (`\u{1B}`), so that
   /// a message stays on one line and cannot drive the terminal showing it.
   private func text(_ token: SceneToken) -> String {
-    let raw = tokenizer.text(of: token)
-    guard raw.unicodeScalars.contains(where: Self.needsEscape) else { return raw }
+    Self.escaped(tokenizer.text(of: token))
+  }
+
+  /// `raw` with control characters and line separators escaped.
+  static func escaped(_ raw: String) -> String {
+    guard raw.unicodeScalars.contains(where: needsEscape) else { return raw }
     var escaped = String.UnicodeScalarView()
     for scalar in raw.unicodeScalars {
-      if Self.needsEscape(scalar) {
+      if needsEscape(scalar) {
         let hex = String(scalar.value, radix: 16, uppercase: true)
         escaped.append(contentsOf: "\\u{\(hex)}".unicodeScalars)
       } else {

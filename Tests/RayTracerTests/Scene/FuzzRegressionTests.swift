@@ -278,6 +278,83 @@ final class FuzzRegressionTests: XCTestCase {
       scene.root, Group([.plane(Plane(normal: Vector3(0, 0, 1), offset: 1))]))
   }
 
+  // MARK: - Transforms
+
+  static let beyondDouble =
+    "the Transform takes its object beyond Double's range: a coordinate, "
+    + "offset or normal is no longer finite, or a radius becomes 0"
+
+  /// Found by the fuzzer's check that the parsed scene, transforms
+  /// applied, holds only finite geometry: every number in the file is
+  /// finite, but what a Transform makes of it need not be. Each case fails
+  /// at the outermost Transform (line 2, column 22).
+  func testTransform_GeometryBeyondDoubleIsAnError() {
+    func transform(_ body: String) -> String {
+      Self.camera + "Group { numObjects 1 Transform { \(body) } }"
+    }
+    // The plane's normal through the inverse transpose is NaN.
+    assertError(
+      transform("UniformScale 1e300 Plane { normal 0 0 1 offset 1 }"), line: 2,
+      column: 22, Self.beyondDouble)
+    assertError(
+      transform(
+        "UniformScale 1e300 Triangle { vertex0 0 0 0 vertex1 1e300 0 0 vertex2 0 1e300 0 }"),
+      line: 2, column: 22, Self.beyondDouble)
+    // A radius of 1e-200 scaled by 1e-150 underflows to 0.
+    assertError(
+      transform("UniformScale 1e-150 Sphere { center 0 0 0 radius 1e-200 }"), line: 2,
+      column: 22, Self.beyondDouble)
+    // Each matrix is finite; their product is not.
+    assertError(
+      transform(
+        "Matrix4f 1e300 0 0 0 0 1e300 0 0 0 0 1e300 0 0 0 0 1 Transform { "
+          + "Matrix4f 1e300 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1 \(Self.sphere) }"),
+      line: 2, column: 22, Self.beyondDouble)
+  }
+
+  /// A matrix that overflows while it is composed was reported as having
+  /// no inverse.
+  func testTransform_OverflowingMatrixSaysSo() {
+    assertError(
+      Self.camera
+        + "Group { numObjects 1 Transform { Translate 1e308 0 0 Translate 1e308 0 0 "
+        + "\(Self.sphere) } }",
+      line: 2, column: 22,
+      "the Transform's matrix overflows: its entries are not all finite")
+  }
+
+  /// Large but representable transforms still parse.
+  func testTransform_LargeButFiniteParses() throws {
+    let scene = try parse(
+      Self.camera
+        + "Group { numObjects 1 Transform { UniformScale 1e100 "
+        + "Sphere { center 0 0 0 radius 1e100 } } }")
+    XCTAssertEqual(scene.root.flattened().spheres.map(\.radius), [1e200])
+  }
+
+  // MARK: - Meshes
+
+  /// The OBJ path is used as written: escaping its control characters, as
+  /// messages do, named another file. The message escapes them.
+  func testMesh_PathIsUsedAsWrittenAndQuotedEscaped() throws {
+    let folder = NSTemporaryDirectory() + "raytrace-fuzz-\(UUID().uuidString)"
+    try FileManager.default.createDirectory(
+      atPath: folder, withIntermediateDirectories: true)
+    defer { try? FileManager.default.removeItem(atPath: folder) }
+    let path = folder + "/tri\u{7}angle.obj"
+    try Data("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".utf8)
+      .write(to: URL(fileURLWithPath: path))
+    let scene = try parse(
+      Self.camera + "Group { numObjects 1 TriangleMesh { obj_file \(path) } }")
+    XCTAssertEqual(scene.root.flattened().triangles.count, 1)
+
+    assertError(
+      Self.camera + "Group { numObjects 1 TriangleMesh { obj_file no\u{1B}such.obj } }",
+      line: 2, column: 46,
+      "cannot read 'no\\u{1B}such.obj': cannot open the file: No such file or "
+        + "directory")
+  }
+
   // MARK: - Numbers
 
   /// Exponents and mantissas far beyond Double's range: infinity is
