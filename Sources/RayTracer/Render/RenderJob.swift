@@ -88,7 +88,9 @@ public enum RenderJob {
     let compiled = CompiledScene<Kernel>(
       scene,
       hierarchyThreshold: settings.hierarchyThreshold
-        ?? BoundingVolumeHierarchy<Kernel.Scalar>.defaultThreshold)
+        ?? (settings.samples == 1
+          ? CompiledScene<Kernel>.tileCulledThreshold
+          : BoundingVolumeHierarchy<Kernel.Scalar>.defaultThreshold))
     let compileSeconds = clock.lap()
     let buffers = Renderer.render(compiled, settings: settings, progress: progress)
     let renderSeconds = clock.lap()

@@ -911,8 +911,17 @@ struct FileReadError: Error {
 /// /dev/zero, a FIFO or a directory named as a scene or a mesh would
 /// otherwise hang the program or exhaust its memory.
 func readFile(_ path: String) throws(FileReadError) -> [UInt8] {
-  guard let handle = fopen(path, "rb") else {
+  // Non-blocking: opening a FIFO for reading would otherwise wait for a
+  // writer, forever, before fstat below could refuse it. The flag changes
+  // nothing for the regular files that are read.
+  let descriptor = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC)
+  guard descriptor >= 0 else {
     throw FileReadError(reason: "cannot open the file: \(String(cString: strerror(errno)))")
+  }
+  guard let handle = fdopen(descriptor, "rb") else {
+    let reason = String(cString: strerror(errno))
+    close(descriptor)
+    throw FileReadError(reason: "cannot open the file: \(reason)")
   }
   defer { fclose(handle) }
   var status = stat()

@@ -355,6 +355,27 @@ final class FuzzRegressionTests: XCTestCase {
         + "directory")
   }
 
+  // MARK: - Files
+
+  /// A FIFO named as a scene hung in fopen, waiting for a writer, before
+  /// the check for regular files could refuse it.
+  func testReadFile_FIFOIsRefusedWithoutWaiting() throws {
+    let path = NSTemporaryDirectory() + "raytrace-fifo-\(UUID().uuidString)"
+    XCTAssertEqual(mkfifo(path, 0o600), 0, String(cString: strerror(errno)))
+    defer { unlink(path) }
+    // Should the open wait after all, a writer arrives after 5 s, so that
+    // the test fails on its time rather than hanging the suite.
+    DispatchQueue.global().asyncAfter(deadline: .now() + 5) {
+      let writer = open(path, O_WRONLY | O_NONBLOCK)
+      if writer >= 0 { close(writer) }
+    }
+    let start = Date()
+    XCTAssertThrowsError(try SceneParser.parse(contentsOf: path)) { error in
+      XCTAssertEqual("\(error)", "\(path): error: not a regular file")
+    }
+    XCTAssertLessThan(Date().timeIntervalSince(start), 4)
+  }
+
   // MARK: - Numbers
 
   /// Exponents and mantissas far beyond Double's range: infinity is
