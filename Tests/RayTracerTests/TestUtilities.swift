@@ -228,3 +228,21 @@ func assertWellFormed(
       "seed \(seed): column \(error.column) on line \(error.line)", file: file, line: line)
   }
 }
+
+/// The byte ranges of the blank-separated words of `bytes`, for the
+/// mutation tests' edits.
+func wordRanges(_ bytes: [UInt8]) -> [Range<Int>] {
+  var ranges: [Range<Int>] = []
+  var start: Int?
+  for (index, byte) in bytes.enumerated() {
+    let blank = byte == 0x20 || byte == 0x0A || byte == 0x09
+    if blank, let begun = start {
+      ranges.append(begun..<index)
+      start = nil
+    } else if !blank && start == nil {
+      start = index
+    }
+  }
+  if let begun = start { ranges.append(begun..<bytes.count) }
+  return ranges
+}

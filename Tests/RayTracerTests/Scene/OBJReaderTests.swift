@@ -501,18 +501,7 @@ final class OBJReaderTests: XCTestCase {
     _ bytes: inout [UInt8], replacements: [String],
     using generator: inout SplitMix64
   ) {
-    var words: [Range<Int>] = []
-    var start: Int?
-    for (index, byte) in bytes.enumerated() {
-      let blank = byte == 0x20 || byte == 0x0A || byte == 0x09
-      if blank, let begun = start {
-        words.append(begun..<index)
-        start = nil
-      } else if !blank && start == nil {
-        start = index
-      }
-    }
-    if let begun = start { words.append(begun..<bytes.count) }
+    let words = wordRanges(bytes)
     guard !words.isEmpty else {
       bytes.append(contentsOf: "f".utf8)
       return

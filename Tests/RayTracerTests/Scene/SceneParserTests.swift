@@ -669,7 +669,7 @@ final class SceneParserTests: XCTestCase {
     _ bytes: inout [UInt8], replacements: [String],
     using generator: inout SplitMix64
   ) {
-    let tokens = tokenRanges(bytes)
+    let tokens = wordRanges(bytes)
     guard !tokens.isEmpty, !bytes.isEmpty else {
       bytes.append(contentsOf: "Group".utf8)
       return
@@ -699,22 +699,5 @@ final class SceneParserTests: XCTestCase {
         UInt8.random(in: 0...255, using: &generator),
         at: Int.random(in: 0...bytes.count, using: &generator))
     }
-  }
-
-  /// The byte ranges of the blank-separated words of `bytes`.
-  private func tokenRanges(_ bytes: [UInt8]) -> [Range<Int>] {
-    var ranges: [Range<Int>] = []
-    var start: Int?
-    for (index, byte) in bytes.enumerated() {
-      let blank = byte == 0x20 || byte == 0x0A || byte == 0x09
-      if blank, let begun = start {
-        ranges.append(begun..<index)
-        start = nil
-      } else if !blank && start == nil {
-        start = index
-      }
-    }
-    if let begun = start { ranges.append(begun..<bytes.count) }
-    return ranges
   }
 }
