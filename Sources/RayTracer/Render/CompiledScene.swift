@@ -201,8 +201,9 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   public enum Nearest: Sendable {
     case sphere(Int)
     case plane(Int)
-    /// With the barycentric weights of the hit, for interpolated normals.
-    case triangle(Int, Scalar, Scalar, Scalar)
+    /// Its barycentric weights are found again for the normal: carried
+    /// here they made every hit record, sphere hits included, twice as big.
+    case triangle(Int)
     case ellipsoid(Int)
   }
 
@@ -251,17 +252,15 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       triangles.withUnsafeBufferPointer { records in
         if let triangleHierarchy {
           let leaves = TriangleLeaves(records: records, ray: prepared)
-          if let hit = triangleHierarchy.nearest(ray, before: tBest, leaves: leaves),
-            let found = records[hit.index].intersect(prepared, before: hit.t.nextUp)
-          {
+          if let hit = triangleHierarchy.nearest(ray, before: tBest, leaves: leaves) {
             tBest = hit.t
-            best = .triangle(hit.index, found.u, found.v, found.w)
+            best = .triangle(hit.index)
           }
         } else {
           for index in records.indices {
             if let found = records[index].intersect(prepared, before: tBest) {
               tBest = found.t
-              best = .triangle(index, found.u, found.v, found.w)
+              best = .triangle(index)
             }
           }
         }
@@ -282,8 +281,8 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     switch what {
     case .sphere(let index): Kernel.normal(spheres[index], ray, t: t)
     case .plane(let index): Kernel.normal(planes[index])
-    case .triangle(let index, let u, let v, let w):
-      triangles[index].normal(u: u, v: v, w: w)
+    case .triangle(let index):
+      triangles[index].normal(of: ray)
     case .ellipsoid(let index):
       ellipsoids[index].matrix.transformNormal(
         Kernel.normal(ellipsoids[index].sphere, ellipsoids[index].localRay(ray), t: t))
@@ -295,7 +294,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     switch what {
     case .sphere(let sphere): index = sphereMaterials[sphere]
     case .plane(let plane): index = planeMaterials[plane]
-    case .triangle(let triangle, _, _, _): index = triangleMaterials[triangle]
+    case .triangle(let triangle): index = triangleMaterials[triangle]
     case .ellipsoid(let ellipsoid): index = ellipsoidMaterials[ellipsoid]
     }
     return materials[Int(index)]
@@ -327,6 +326,16 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
     _ ray: WatertightRay<Scalar>, before tMax: Scalar
   ) -> (t: Scalar, u: Scalar, v: Scalar, w: Scalar)? {
     TriangleIntersection.intersect(ray, v0, v1, v2, after: 0, before: tMax)
+  }
+
+  /// The normal where `ray` hits: the barycentrics are found again (the
+  /// same computation as the hit's, so the same values).
+  func normal(of ray: CameraRay<Scalar>) -> Vector3<Scalar> {
+    let geometric = geometricNormal ?? .zero
+    guard normals != nil else { return geometric }
+    let prepared = WatertightRay(Ray(origin: ray.origin, direction: ray.direction))
+    guard let hit = intersect(prepared, before: .infinity) else { return geometric }
+    return normal(u: hit.u, v: hit.v, w: hit.w)
   }
 
   func normal(u: Scalar, v: Scalar, w: Scalar) -> Vector3<Scalar> {
