@@ -229,12 +229,14 @@ struct Render: ParsableCommand {
   func run() throws {
     let plan = try plan()
     let scene: Scene
+    var clock = Stopwatch()
     do {
       scene = try SceneParser.parse(contentsOf: plan.scenePath)
     } catch {
       printError(error.description)
       throw ExitCode.failure
     }
+    let parseSeconds = clock.lap()
     do {
       for file in plan.files {
         try AtomicFile.checkWritable(file.path)
@@ -261,11 +263,13 @@ struct Render: ParsableCommand {
       throw ExitCode.failure
     }
     if stats {
-      printStats(report, scenePath: plan.scenePath)
+      printStats(report, scenePath: plan.scenePath, parseSeconds: parseSeconds)
     }
   }
 
-  private func printStats(_ report: RenderReport, scenePath: String) {
+  private func printStats(
+    _ report: RenderReport, scenePath: String, parseSeconds: Double
+  ) {
     let settings = report.settings
     printError(
       "scene: \(scenePath): \(report.spheres) spheres, \(report.planes) planes, "
@@ -282,6 +286,7 @@ struct Render: ParsableCommand {
     if let range = report.depthRange {
       printError("depth range: \(range.lowerBound) to \(range.upperBound)")
     }
+    printError("parse: \(seconds(parseSeconds))")
     printError("compile: \(seconds(report.compileSeconds))")
     printError(
       "render: \(seconds(report.renderSeconds)), "
