@@ -14,6 +14,8 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   var planeMaterials: [Int32]
   /// Nil for scenes small enough that testing every sphere is faster.
   var hierarchy: BoundingVolumeHierarchy<Scalar>?
+  /// The same hierarchy four-wide, for the rays it can answer.
+  var wideHierarchy: WideHierarchy<Scalar>?
   /// Without a hierarchy: per sphere, the centre relative to the rays'
   /// origin and the distance from it within which the kernel can report a
   /// hit (the hierarchy's conservative reach), for culling spheres per
@@ -24,6 +26,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   var triangles: [TriangleRecord<Scalar>] = []
   var triangleMaterials: [Int32] = []
   var triangleHierarchy: BoundingVolumeHierarchy<Scalar>?
+  var wideTriangleHierarchy: WideHierarchy<Scalar>?
   /// Spheres under transforms that are not similarities.
   var ellipsoids: [EllipsoidRecord<Kernel>] = []
   var ellipsoidMaterials: [Int32] = []
@@ -64,6 +67,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       spheres = bvh.order.map { spheres[Int($0)] }
       sphereMaterials = bvh.order.map { sphereMaterials[Int($0)] }
       hierarchy = bvh
+      wideHierarchy = WideHierarchy(bvh, rayOrigin: rayOrigin)
     } else {
       let model: BoundingVolumeHierarchy<Scalar>.ErrorModel =
         Kernel.self == StableKernel<Scalar>.self ? .cancellationFree : .textbook
@@ -129,6 +133,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       triangles = bvh.order.map { triangles[Int($0)] }
       triangleMaterials = bvh.order.map { triangleMaterials[Int($0)] }
       triangleHierarchy = bvh
+      wideTriangleHierarchy = WideHierarchy(bvh, rayOrigin: Kernel.frameOrigin(eye: eye))
     }
     for ellipsoid in all.transformedSpheres {
       let objectEye = ellipsoid.inverse.transformPoint(eye)
@@ -226,7 +231,8 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       }
     } else if let hierarchy {
       spheres.withUnsafeBufferPointer { records in
-        if let hit = hierarchy.nearest(ray, before: tBest, records: records, kernel: Kernel.self) {
+        let leaves = SphereLeaves<Kernel>(records: records, ray: ray)
+        if let hit = hierarchy.nearest(ray, before: tBest, leaves: leaves, wide: wideHierarchy) {
           tBest = hit.t
           best = .sphere(hit.index)
         }
@@ -252,7 +258,9 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       triangles.withUnsafeBufferPointer { records in
         if let triangleHierarchy {
           let leaves = TriangleLeaves(records: records, ray: prepared)
-          if let hit = triangleHierarchy.nearest(ray, before: tBest, leaves: leaves) {
+          if let hit = triangleHierarchy.nearest(
+            ray, before: tBest, leaves: leaves, wide: wideTriangleHierarchy)
+          {
             tBest = hit.t
             best = .triangle(hit.index)
           }
