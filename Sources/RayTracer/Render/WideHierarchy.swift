@@ -80,15 +80,14 @@ struct WideHierarchy<Scalar: RayScalar>: Sendable {
     let limit = Self.coordinateLimit
     // Leaf references keep the first primitive in 28 bits.
     guard binary.order.count < 1 << 27 else { return nil }
+    func fits(_ value: Scalar) -> Bool {
+      !value.isNaN && (value.isInfinite || value.magnitude <= limit)
+    }
     for node in binary.nodes {
       let lower = node.lower - rayOrigin
       let upper = node.upper - rayOrigin
-      for value in [lower.x, lower.y, lower.z, upper.x, upper.y, upper.z]
-      where value.isFinite && value.magnitude > limit {
-        return nil
-      }
-      guard !lower.x.isNaN, !lower.y.isNaN, !lower.z.isNaN,
-        !upper.x.isNaN, !upper.y.isNaN, !upper.z.isNaN
+      guard fits(lower.x), fits(lower.y), fits(lower.z), fits(upper.x), fits(upper.y),
+        fits(upper.z)
       else { return nil }
     }
     var wide: [Node] = []
@@ -107,26 +106,32 @@ struct WideHierarchy<Scalar: RayScalar>: Sendable {
       if node.isLeaf { return ~(node.index << 3 | node.count) }
       // Open the child with the largest surface until there are four: the
       // children a ray is likeliest to enter are then tested together.
-      var slots = [Int(node.index), Int(node.index) + 1]
-      while slots.count < 4 {
-        var opened = -1
-        var largest = -Scalar.infinity
-        for (slot, child) in slots.enumerated() where !binaryNodes[child].isLeaf {
-          let area = surfaceArea(binaryNodes[child])
-          if opened < 0 || area > largest {
-            opened = slot
-            largest = area
+      var slots = (Int(node.index), Int(node.index) + 1, 0, 0)
+      var count = 2
+      withUnsafeMutableBytes(of: &slots) { bytes in
+        let slots = bytes.bindMemory(to: Int.self)
+        while count < 4 {
+          var opened = -1
+          var largest = -Scalar.infinity
+          for slot in 0..<count where !binaryNodes[slots[slot]].isLeaf {
+            let area = surfaceArea(binaryNodes[slots[slot]])
+            if opened < 0 || area > largest {
+              opened = slot
+              largest = area
+            }
           }
+          guard opened >= 0 else { break }
+          let child = binaryNodes[slots[opened]]
+          slots[opened] = Int(child.index)
+          slots[count] = Int(child.index) + 1
+          count += 1
         }
-        guard opened >= 0 else { break }
-        let child = binaryNodes[slots.remove(at: opened)]
-        slots.append(Int(child.index))
-        slots.append(Int(child.index) + 1)
       }
       let position = wide.count
       wide.append(Node())
       var result = Node()
-      for (lane, child) in slots.enumerated() {
+      for lane in 0..<count {
+        let child = withUnsafeBytes(of: slots) { $0.load(fromByteOffset: lane * 8, as: Int.self) }
         let box = binaryNodes[child]
         result.lowerX[lane] = Self.roundedDown(box.lower.x - rayOrigin.x)
         result.lowerY[lane] = Self.roundedDown(box.lower.y - rayOrigin.y)
