@@ -575,24 +575,41 @@ public struct SceneParser {
     return .group(Group(triangles.map { .triangle($0) }))
   }
 
-  /// The hot path of large scenes: keywords are compared as bytes, and the
-  /// usual `center x y z radius r` order needs no dictionary or String.
+  /// The hot path of large scenes: keywords are compared as bytes, and
+  /// nothing is allocated. The same checks and messages as `parseFields`
+  /// with `positive` for the radius.
   private mutating func parseSphere(material: Int) throws(SceneError) -> Sphere<Double> {
+    try expect(.open, "'{' after Sphere")
     var center: Vector3<Double>?
     var radius: Double?
-    let close = try parseFields(
-      "Sphere", ["center", "radius"]
-    ) { (parser: inout SceneParser, field: String) throws(SceneError) in
-      if field == "center" {
-        center = try parser.vector()
-      } else {
-        radius = try parser.positive(field)
+    while true {
+      let token = try next()
+      switch token.kind {
+      case .close:
+        guard let center, let radius else {
+          throw missing(
+            "Sphere", [("center", center != nil), ("radius", radius != nil)], token)
+        }
+        return Sphere(center: center, radius: radius, materialIndex: material)
+      case .end, .open:
+        throw unexpectedEnd(token, in: "Sphere")
+      case .word:
+        if tokenizer.matches(token, "center") {
+          guard center == nil else {
+            throw error(at: token, "'center' is given twice in Sphere")
+          }
+          center = try vector()
+        } else if tokenizer.matches(token, "radius") {
+          guard radius == nil else {
+            throw error(at: token, "'radius' is given twice in Sphere")
+          }
+          radius = try positive("radius")
+        } else {
+          throw unexpected(
+            token, expected: "a field of Sphere", choices: ["center", "radius"])
+        }
       }
     }
-    guard let center, let radius else {
-      throw missing("Sphere", [("center", center != nil), ("radius", radius != nil)], close)
-    }
-    return Sphere(center: center, radius: radius, materialIndex: material)
   }
 
   private mutating func parsePlane(material: Int) throws(SceneError) -> Plane<Double> {
@@ -634,7 +651,9 @@ public struct SceneParser {
     read: (inout SceneParser, String) throws(SceneError) -> Void
   ) throws(SceneError) -> SceneToken {
     try expect(.open, "'{' after \(block)")
-    var seen = [Bool](repeating: false, count: fields.count)
+    // A mask rather than an array: no block has more than a few fields,
+    // and an allocation per block showed in the parse of large scenes.
+    var seen: UInt64 = 0
     while true {
       let token = try next()
       switch token.kind {
@@ -649,10 +668,10 @@ public struct SceneParser {
             token, expected: "a field of \(block)",
             choices: fields.map { "\($0)" })
         }
-        guard !seen[index] else {
+        guard seen & (1 << index) == 0 else {
           throw error(at: token, "'\(fields[index])' is given twice in \(block)")
         }
-        seen[index] = true
+        seen |= 1 << index
         try read(&self, "\(fields[index])")
       }
     }
@@ -681,6 +700,12 @@ public struct SceneParser {
   }
 
   private mutating func number() throws(SceneError) -> Double {
+    try numberAndToken().value
+  }
+
+  private mutating func numberAndToken() throws(SceneError) -> (
+    value: Double, token: SceneToken
+  ) {
     let token = try next()
     guard let value = tokenizer.number(token) else {
       throw error(at: token, "expected a number, found '\(text(token))'")
@@ -688,7 +713,7 @@ public struct SceneParser {
     guard value.isFinite else {
       throw error(at: token, "expected a finite number, found '\(text(token))'")
     }
-    return value
+    return (value, token)
   }
 
   private mutating func vector() throws(SceneError) -> Vector3<Double> {
@@ -717,8 +742,7 @@ public struct SceneParser {
   }
 
   private mutating func positive(_ field: String) throws(SceneError) -> Double {
-    let token = peekStart()
-    let value = try number()
+    let (value, token) = try numberAndToken()
     guard value > 0 else {
       throw error(at: token, "'\(field)' must be positive, found \(text(token))")
     }
@@ -935,17 +959,26 @@ func readFile(_ path: String) throws(FileReadError) -> [UInt8] {
     throw FileReadError(
       reason: "the file is \(status.st_size) bytes; the limit is \(maximumFileSize)")
   }
-  var bytes: [UInt8] = []
-  bytes.reserveCapacity(Int(status.st_size))
-  var chunk = [UInt8](repeating: 0, count: 1 << 20)
-  while true {
+  // Straight into the array when the size is right: a 72 MB scene was
+  // otherwise copied once more, chunk by chunk. A file that grows while it
+  // is read goes on in chunks.
+  let expected = Int(status.st_size)
+  var failed = false
+  var bytes = [UInt8](unsafeUninitializedCapacity: expected) { buffer, count in
+    count = fread(buffer.baseAddress, 1, expected, handle)
+    failed = count < expected && ferror(handle) != 0
+  }
+  var chunk = [UInt8](repeating: 0, count: failed || bytes.count < expected ? 0 : 1 << 16)
+  while !failed && !chunk.isEmpty {
     let read = chunk.withUnsafeMutableBytes { fread($0.baseAddress, 1, $0.count, handle) }
     if read > 0 { bytes.append(contentsOf: chunk[0..<read]) }
     if read < chunk.count {
-      if ferror(handle) != 0 {
-        throw FileReadError(reason: "cannot read the file: \(String(cString: strerror(errno)))")
-      }
-      return bytes
+      failed = ferror(handle) != 0
+      break
     }
   }
+  if failed {
+    throw FileReadError(reason: "cannot read the file: \(String(cString: strerror(errno)))")
+  }
+  return bytes
 }
