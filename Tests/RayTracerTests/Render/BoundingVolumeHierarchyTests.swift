@@ -13,6 +13,8 @@ final class BoundingVolumeHierarchyTests: XCTestCase {
     let records: [Kernel.SphereRecord]
     let ordered: [Kernel.SphereRecord]
     let hierarchy: BoundingVolumeHierarchy<Scalar>
+    /// The same hierarchy four-wide; nil only where it declines.
+    let wide: WideHierarchy<Scalar>?
     let origin: Vector3<Scalar>
 
     init(_ spheres: [Sphere<Double>], eye: Vector3<Double>) {
@@ -21,6 +23,7 @@ final class BoundingVolumeHierarchyTests: XCTestCase {
       hierarchy = BoundingVolumeHierarchy(
         spheres: records, kernel: Kernel.self, rayOrigin: origin)
       ordered = hierarchy.order.map { [records] in records[Int($0)] }
+      wide = WideHierarchy(hierarchy, rayOrigin: origin)
     }
 
     func ray(_ direction: Vector3<Scalar>) -> CameraRay<Scalar> {
@@ -43,8 +46,20 @@ final class BoundingVolumeHierarchyTests: XCTestCase {
       return best.map { (tBest, $0) }
     }
 
-    /// The hierarchy's answer, its index mapped back to the scene's order.
+    /// The render loop's answer (the wide hierarchy where it can answer,
+    /// else the binary one), its index mapped back to the scene's order.
     func nearest(
+      _ ray: CameraRay<Scalar>, before tMax: Scalar = .infinity
+    ) -> (t: Scalar, index: Int)? {
+      let hit = ordered.withUnsafeBufferPointer {
+        hierarchy.nearest(
+          ray, before: tMax, leaves: SphereLeaves<Kernel>(records: $0, ray: ray), wide: wide)
+      }
+      return hit.map { ($0.t, Int(hierarchy.order[$0.index])) }
+    }
+
+    /// The binary hierarchy's own answer, in the scene's order.
+    func binaryNearest(
       _ ray: CameraRay<Scalar>, before tMax: Scalar = .infinity
     ) -> (t: Scalar, index: Int)? {
       let hit = ordered.withUnsafeBufferPointer {
@@ -67,17 +82,21 @@ final class BoundingVolumeHierarchyTests: XCTestCase {
       for direction in directions {
         let ray = ray(direction)
         let want = bruteForce(ray, before: tMax)
-        let got = nearest(ray, before: tMax)
         if want != nil { hits += 1 }
-        guard got?.t != want?.t || got?.index != want?.index else { continue }
-        failures += 1
-        // A few are enough to diagnose; thousands would bury the seed.
-        guard failures <= 3 else { continue }
-        XCTFail(
-          "\(Kernel.self) \(context()): direction \(direction): hierarchy "
-            + "\(String(describing: got)), brute force "
-            + "\(String(describing: want))",
-          file: file, line: line)
+        for (name, got) in [
+          ("hierarchy", nearest(ray, before: tMax)),
+          ("binary hierarchy", binaryNearest(ray, before: tMax)),
+        ] {
+          guard got?.t != want?.t || got?.index != want?.index else { continue }
+          failures += 1
+          // A few are enough to diagnose; thousands would bury the seed.
+          guard failures <= 3 else { continue }
+          XCTFail(
+            "\(Kernel.self) \(context()): direction \(direction): \(name) "
+              + "\(String(describing: got)), brute force "
+              + "\(String(describing: want))",
+            file: file, line: line)
+        }
       }
       return hits
     }
