@@ -191,10 +191,11 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// The sphere count from which a hierarchy beats the flat loop when the
   /// loop culls spheres per tile (single-sample renders). Measured at
   /// 1920×1080, depth and normals, one thread, random spheres as
-  /// `gen_spheres.py` lays them out: culling 15.4 / 10.3 / 7.9 / 3.5 Mrays/s
-  /// at 100 / 300 / 1,000 / 3,000 spheres against the hierarchy's
-  /// 8.0 / 6.9 / 5.4 / 4.4: they cross near 2,000.
-  public static var tileCulledThreshold: Int { 1500 }
+  /// `gen_spheres.py` lays them out (seed 1), with the four-wide hierarchy:
+  /// culling 138 / 137 / 180 / 221 / 375 ms at 200 / 400 / 700 / 1,000 /
+  /// 2,000 spheres against the hierarchy's 178 / 195 / 215 / 251 / 258 ms:
+  /// they cross near 1,300.
+  public static var tileCulledThreshold: Int { 1300 }
 
   /// Whether per-tile culling applies: spheres without a hierarchy.
   var cullsPerTile: Bool { hierarchy == nil && spheres.count > 1 }
