@@ -161,25 +161,42 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// (64 ε of the render's precision times the distance), so the nearest
   /// hit of every ray in the tile is the same as testing every sphere.
   func cullSpheres(
-    corners: [Vector3<Double>], into candidates: UnsafeMutableBufferPointer<Int32>
+    corners: (Vector3<Double>, Vector3<Double>, Vector3<Double>, Vector3<Double>),
+    into candidates: UnsafeMutableBufferPointer<Int32>
   ) -> Int {
-    var faces: [Vector3<Double>] = []
-    let middle = corners.reduce(Vector3<Double>.zero, +)
-    for index in corners.indices {
-      let normal = corners[index].cross(corners[(index + 1) % corners.count])
+    // Four faces at most, in a tuple: this runs for every tile, and arrays
+    // here were an allocation or two per 64 pixels.
+    let middle = corners.0 + corners.1 + corners.2 + corners.3
+    var faces = (Vector3<Double>.zero, Vector3<Double>.zero, Vector3<Double>.zero, Vector3<Double>.zero)
+    var faceCount = 0
+    func addFace(_ a: Vector3<Double>, _ b: Vector3<Double>) {
+      let normal = a.cross(b)
       let length = normal.length
-      guard length > 1e-300, length.isFinite else { continue }
+      guard length > 1e-300, length.isFinite else { return }
       var unit = normal / length
       if unit.dot(middle) < 0 { unit = -unit }
-      faces.append(unit)
+      switch faceCount {
+      case 0: faces.0 = unit
+      case 1: faces.1 = unit
+      case 2: faces.2 = unit
+      default: faces.3 = unit
+      }
+      faceCount += 1
     }
+    addFace(corners.0, corners.1)
+    addFace(corners.1, corners.2)
+    addFace(corners.2, corners.3)
+    addFace(corners.3, corners.0)
+    // A missing face (degenerate edge) stays zero, which excludes nothing.
     let slack = 64 * Double(Scalar.ulpOfOne)
     var count = 0
     for sphere in cullCenters.indices {
       let center = cullCenters[sphere]
       let radius = cullRadii[sphere]
       let margin = radius + slack * (center.length + radius) + 1e-300
-      let outside = faces.contains { $0.dot(center) < -margin }
+      let outside =
+        faces.0.dot(center) < -margin || faces.1.dot(center) < -margin
+        || faces.2.dot(center) < -margin || faces.3.dot(center) < -margin
       if !outside {
         candidates[count] = Int32(truncatingIfNeeded: sphere)
         count += 1

@@ -134,9 +134,12 @@ public enum Renderer {
       for start in stride(from: 0, to: settings.width, by: tileWidth) {
         let tile = start..<min(start + tileWidth, settings.width)
         let (left, right) = (columns[tile.lowerBound], columns[tile.upperBound - 1])
-        let corners = [(left, top), (right, top), (right, bottom), (left, bottom)].map {
-          Vector3<Double>(camera.rayDirection(x: $0.0, y: $0.1, aspect: aspect))
+        func corner(_ x: R, _ y: R) -> Vector3<Double> {
+          Vector3<Double>(camera.rayDirection(x: x, y: y, aspect: aspect))
         }
+        let corners = (
+          corner(left, top), corner(right, top), corner(right, bottom), corner(left, bottom)
+        )
         let count = scene.cullSpheres(corners: corners, into: candidates)
         let chosen = UnsafeBufferPointer(rebasing: candidates[0..<count])
         for row in rows {
