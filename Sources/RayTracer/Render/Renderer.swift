@@ -165,28 +165,39 @@ public enum Renderer {
     let wantsNormals = targets.normals.count > 0
     let wantsColor = targets.color.count > 0
     let attenuate = style == .mit
-    for column in tile {
-      let direction = Vector3<S>(camera.rayDirection(x: columns[column], rowBase: rowBase))
-      let ray = CameraRay(origin: scene.rayOrigin, direction: direction)
-      let pixel = row * width + column
-      if wantsColor && settings.samples > 1 {
-        targets.color[pixel] = supersampledColor(
-          column: column, row: row, scene: scene, camera: camera, settings: settings)
+    // The tile's directions first, in a loop without calls, so that the
+    // processor overlaps one pixel's square root and division with the
+    // next one's instead of waiting on each behind a traversal. At most
+    // 16 vectors: 768 bytes in Float80, on the stack.
+    precondition(tile.count <= tileWidth)
+    withUnsafeTemporaryAllocation(of: Vector3<S>.self, capacity: tileWidth) { directions in
+      for column in tile {
+        (directions.baseAddress! + (column - tile.lowerBound)).initialize(
+          to: Vector3<S>(camera.rayDirection(x: columns[column], rowBase: rowBase)))
       }
-      let shadeCentre = wantsColor && settings.samples == 1
-      guard let hit = scene.nearest(ray, candidates: candidates) else {
-        if wantsDepth { targets.depth[pixel] = .infinity }
-        if wantsNormals { targets.normals[pixel] = .zero }
-        if shadeCentre { targets.color[pixel] = scene.background }
-        continue
-      }
-      if wantsDepth { targets.depth[pixel] = hit.t }
-      guard wantsNormals || shadeCentre else { continue }
-      let normal = scene.normal(of: hit.what, ray, t: hit.t)
-      if wantsNormals { targets.normals[pixel] = normal }
-      if shadeCentre {
-        targets.color[pixel] = shade(
-          hit, ray: ray, normal: normal, scene: scene, attenuate: attenuate)
+      for column in tile {
+        let direction = directions[column - tile.lowerBound]
+        let ray = CameraRay(origin: scene.rayOrigin, direction: direction)
+        let pixel = row * width + column
+        if wantsColor && settings.samples > 1 {
+          targets.color[pixel] = supersampledColor(
+            column: column, row: row, scene: scene, camera: camera, settings: settings)
+        }
+        let shadeCentre = wantsColor && settings.samples == 1
+        guard let hit = scene.nearest(ray, candidates: candidates) else {
+          if wantsDepth { targets.depth[pixel] = .infinity }
+          if wantsNormals { targets.normals[pixel] = .zero }
+          if shadeCentre { targets.color[pixel] = scene.background }
+          continue
+        }
+        if wantsDepth { targets.depth[pixel] = hit.t }
+        guard wantsNormals || shadeCentre else { continue }
+        let normal = scene.normal(of: hit.what, ray, t: hit.t)
+        if wantsNormals { targets.normals[pixel] = normal }
+        if shadeCentre {
+          targets.color[pixel] = shade(
+            hit, ray: ray, normal: normal, scene: scene, attenuate: attenuate)
+        }
       }
     }
   }
