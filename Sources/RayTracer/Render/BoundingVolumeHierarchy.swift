@@ -119,21 +119,25 @@ public struct BoundingVolumeHierarchy<Scalar: RayScalar>: Sendable {
 extension BoundingVolumeHierarchy {
   /// The hierarchy over `spheres` as the kernel stores them, for rays from
   /// `rayOrigin` in the kernel's frame (`Kernel.frameOrigin(eye:)`).
+  ///
+  /// - Parameter concurrentFrom: see `init(boxes:concurrentFrom:)`.
   init<Kernel: IntersectionKernel>(
     spheres: [Kernel.SphereRecord], kernel: Kernel.Type,
-    rayOrigin: Vector3<Scalar>
+    rayOrigin: Vector3<Scalar>, concurrentFrom: Int = 1 << 16
   ) where Kernel.Scalar == Scalar {
     // A protocol requirement would be the natural home for this, but the
     // model is a property of the two kernels this module defines; anything
     // else gets the textbook bound, which is looser.
     let model: ErrorModel =
       Kernel.self == StableKernel<Scalar>.self ? .cancellationFree : .textbook
-    let boxes = spheres.map { record in
-      let (center, radius) = Kernel.centerAndRadius(record)
-      return Self.box(
-        center: center, radius: radius, rayOrigin: rayOrigin, model: model)
+    var (primitives, summary) = spheres.withUnsafeBufferPointer { records in
+      Self.primitives(count: records.count, concurrentFrom: concurrentFrom) {
+        let (center, radius) = Kernel.centerAndRadius(records[$0])
+        return Self.box(
+          center: center, radius: radius, rayOrigin: rayOrigin, model: model)
+      }
     }
-    self.init(boxes: boxes)
+    self.init(&primitives, summary, concurrentFrom: concurrentFrom)
   }
 
   /// A box holding every point at which a kernel of `model` can report a
@@ -210,28 +214,92 @@ extension BoundingVolumeHierarchy {
 
   /// Builds over boxes given in the original order.
   ///
-  /// - Parameter concurrentFrom: from this many boxes the root's two
-  ///   subtrees are built on two threads. The result is the same either
-  ///   way: each half is built as the sequential build would build it, and
-  ///   the halves are spliced into the same depth-first layout.
+  /// - Parameter concurrentFrom: from this many boxes the work is shared
+  ///   by two threads: the primitives and their bounds, the root's bins,
+  ///   then the root's two subtrees. The result is the same either way:
+  ///   the bounds of the two halves are merged in order (a minimum keeps
+  ///   the first of equal values and a maximum the last, as one pass
+  ///   would), each subtree is built as the sequential build would build
+  ///   it, and the subtrees are spliced into the same depth-first layout.
   init(
     boxes: [(lower: Vector3<Scalar>, upper: Vector3<Scalar>)],
     concurrentFrom: Int = 1 << 16
   ) {
-    var primitives = boxes.indices.map { index in
-      Primitive(
-        lower: boxes[index].lower, upper: boxes[index].upper,
-        index: Int32(truncatingIfNeeded: index))
+    var (primitives, summary) = boxes.withUnsafeBufferPointer { boxes in
+      Self.primitives(count: boxes.count, concurrentFrom: concurrentFrom) {
+        boxes[$0]
+      }
     }
+    self.init(&primitives, summary, concurrentFrom: concurrentFrom)
+  }
+
+  /// Partitions `primitives` in place: an array passed by value was
+  /// copied, 80 MB for 10⁶ spheres.
+  private init(
+    _ primitives: inout [Primitive], _ summary: Summary, concurrentFrom: Int
+  ) {
     var builder = Builder()
     primitives.withUnsafeMutableBufferPointer { primitives in
-      builder.build(primitives, concurrentFrom: concurrentFrom)
+      builder.build(
+        primitives, summary: summary, concurrentFrom: concurrentFrom)
     }
     nodes = builder.nodes
     order = primitives.map(\.index)
     depth = builder.depth
     precondition(
       depth < Self.stackCapacity, "BVH deeper than the traversal stack")
+  }
+
+  /// The primitive of each box, in the original order, and their bounds,
+  /// in one pass: a separate array of boxes and a pass for the root's
+  /// bounds cost a tenth of the build of 10⁶ spheres.
+  static func primitives(
+    count: Int, concurrentFrom: Int,
+    box: (Int) -> (lower: Vector3<Scalar>, upper: Vector3<Scalar>)
+  ) -> (primitives: [Primitive], summary: Summary) {
+    let parts = count >= concurrentFrom ? 2 : 1
+    var summaries = [Summary](repeating: Summary(), count: parts)
+    let primitives = [Primitive](unsafeUninitializedCapacity: count) {
+      buffer, initialized in
+      summaries.withUnsafeMutableBufferPointer { summaries in
+        let shared = Shared((buffer, summaries))
+        inParts(count, parts) { part, range in
+          let (buffer, summaries) = shared.value
+          var summary = Summary()
+          for index in range {
+            let (lower, upper) = box(index)
+            let primitive = Primitive(
+              lower: lower, upper: upper,
+              index: Int32(truncatingIfNeeded: index))
+            (buffer.baseAddress.unsafelyUnwrapped + index).initialize(
+              to: primitive)
+            summary.include(primitive)
+          }
+          summaries[part] = summary
+        }
+      }
+      initialized = count
+    }
+    var summary = Summary()
+    for part in summaries { summary.include(part) }
+    return (primitives, summary)
+  }
+
+  /// Calls `body` for `parts` consecutive ranges covering 0..<count, each
+  /// on its own thread when there are several.
+  static func inParts(
+    _ count: Int, _ parts: Int, _ body: (Int, Range<Int>) -> Void
+  ) {
+    guard parts > 1 else {
+      body(0, 0..<count)
+      return
+    }
+    withoutActuallyEscaping(body) { body in
+      let shared = Shared(body)
+      DispatchQueue.concurrentPerform(iterations: parts) { part in
+        shared.value(part, count * part / parts..<count * (part + 1) / parts)
+      }
+    }
   }
 
   /// A sphere's box while building, carried through the partitions so that
@@ -315,12 +383,53 @@ extension BoundingVolumeHierarchy {
     var rightCost: Double = 0
   }
 
+  /// How a node's centroids fall into bins: along the widest axis whose
+  /// extent and its reciprocal are finite. Nodes of a few spheres use
+  /// fewer bins: two per sphere, at least four.
+  ///
+  /// Only one axis: binning all three cost twice the build time and
+  /// rendered no faster in the benchmarks behind `defaultThreshold`.
+  struct Binning {
+    var axis: Int
+    var origin: Scalar
+    var scale: Scalar
+    var count: Int
+
+    /// Nil when no axis can be binned (all centroids equal, or an extent
+    /// that overflows or whose reciprocal does).
+    init?(_ centroids: Bounds, primitives: Int) {
+      count = Swift.min(
+        BoundingVolumeHierarchy.binCount, Swift.max(4, 2 * primitives))
+      axis = -1
+      scale = 0
+      for candidate in 0..<3 {
+        let extent = centroids.upper[candidate] - centroids.lower[candidate]
+        let candidateScale = Scalar(count) / extent
+        guard extent > 0 && extent.isFinite && candidateScale.isFinite else {
+          continue
+        }
+        if axis < 0 || candidateScale < scale {
+          axis = candidate
+          scale = candidateScale
+        }
+      }
+      guard axis >= 0 else { return nil }
+      origin = centroids.lower[axis]
+    }
+
+    @inline(__always)
+    func bin(_ centroid: Vector3<Scalar>) -> Int {
+      Builder.bin(centroid[axis], origin, scale, count)
+    }
+  }
+
   /// The state of one build: nodes so far and bins reused by every node.
   struct Builder {
     var nodes: [Node] = []
     var depth = 0
+    /// The node's bins first, then three sets more for `fill`.
     var bins = [Bin](
-      repeating: Bin(), count: BoundingVolumeHierarchy.binCount)
+      repeating: Bin(), count: 4 * BoundingVolumeHierarchy.binCount)
 
     /// One node still to build: its slot, its primitives and their bounds.
     struct Task {
@@ -328,6 +437,8 @@ extension BoundingVolumeHierarchy {
       var range: Range<Int>
       var summary: Summary
       var depth: Int
+      /// Whether `bins` holds its bins already (only ever the root's).
+      var binned = false
     }
 
     /// Where a node's primitives go; a split has partitioned them.
@@ -341,36 +452,115 @@ extension BoundingVolumeHierarchy {
     }
 
     mutating func build(
-      _ primitives: UnsafeMutableBufferPointer<Primitive>, concurrentFrom: Int
+      _ primitives: UnsafeMutableBufferPointer<Primitive>, summary: Summary,
+      concurrentFrom: Int
     ) {
       guard !primitives.isEmpty else { return }
       nodes.reserveCapacity(2 * primitives.count - 1)
       nodes.append(Self.placeholder)
-      let root = Task(
-        node: 0, range: primitives.indices,
-        summary: Summary(primitives, primitives.indices), depth: 0)
+      var root = Task(
+        node: 0, range: primitives.indices, summary: summary, depth: 0)
       guard primitives.count >= concurrentFrom else {
         grow(primitives, from: root)
         return
       }
-      // The root here, then each child's subtree on its own thread into its
-      // own array, its root at 0.
+      // The root's bins and the root here, then each child's subtree on its
+      // own thread into its own array, its root at 0.
+      root.binned = binInParts(primitives, summary)
       guard let (left, right) = place(primitives, root) else { return }
-      let shared = Shared(primitives: primitives)
+      let shared = Shared(primitives)
       var halves = [Builder(), Builder()]
       halves.withUnsafeMutableBufferPointer { halves in
-        let results = SharedBuilders(builders: halves)
+        let results = Shared(halves)
         DispatchQueue.concurrentPerform(iterations: 2) { half in
           var task = half == 0 ? left : right
           task.node = 0
           var builder = Builder()
           builder.nodes.reserveCapacity(2 * task.range.count - 1)
           builder.nodes.append(Self.placeholder)
-          builder.grow(shared.primitives, from: task)
-          results.builders[half] = builder
+          builder.grow(shared.value, from: task)
+          results.value[half] = builder
         }
       }
       splice(halves[0], halves[1], at: left.node)
+    }
+
+    /// Fills `bins` for the root as `bestBinnedSplit` would, each half of
+    /// the primitives on its own thread; the halves' bins are merged in
+    /// order (a minimum keeps the first of equal values and a maximum the
+    /// last, as one pass does), so they are the bins one pass gives.
+    /// False when the root is not binned.
+    mutating func binInParts(
+      _ primitives: UnsafeMutableBufferPointer<Primitive>, _ summary: Summary
+    ) -> Bool {
+      guard primitives.count > 1,
+        BoundingVolumeHierarchy.forcedMedianDepth > 0,
+        let binning = Binning(summary.centroids, primitives: primitives.count)
+      else { return false }
+      let empty = [Bin](repeating: Bin(), count: binning.count)
+      var parts = [empty, empty]
+      parts.withUnsafeMutableBufferPointer { parts in
+        let shared = Shared((primitives, parts))
+        BoundingVolumeHierarchy.inParts(primitives.count, 2) { part, range in
+          let (primitives, parts) = shared.value
+          parts[part].withUnsafeMutableBufferPointer { bins in
+            Self.fill(bins, primitives, range, binning)
+          }
+        }
+      }
+      for bin in 0..<binning.count {
+        var merged = Bin()
+        for part in parts {
+          merged.count += part[bin].count
+          merged.summary.include(part[bin].summary)
+        }
+        bins[bin] = merged
+      }
+      return true
+    }
+
+    /// Adds each primitive of the range to its bin in the first set of
+    /// `binning.count` bins in `bins`.
+    ///
+    /// A long range is binned as four blocks at once, each into a set of
+    /// its own that is then merged in order into the first: consecutive
+    /// primitives in one bin otherwise each wait for the other's update of
+    /// it, which made this loop a quarter of the build. Merged in order,
+    /// the bins are those one pass gives: of equal values (±0) a minimum
+    /// keeps the first and a maximum the last, however they are grouped.
+    static func fill(
+      _ bins: UnsafeMutableBufferPointer<Bin>,
+      _ primitives: UnsafeMutableBufferPointer<Primitive>, _ range: Range<Int>,
+      _ binning: Binning
+    ) {
+      let count = binning.count
+      @inline(__always)
+      func add(_ index: Int, to set: Int) {
+        let primitive = primitives[index]
+        let bin = set * count + binning.bin(primitive.centroid)
+        bins[bin].count += 1
+        bins[bin].summary.include(primitive)
+      }
+      guard range.count >= 64, bins.count >= 4 * count else {
+        for index in range { add(index, to: 0) }
+        return
+      }
+      for bin in count..<4 * count { bins[bin] = Bin() }
+      let quarter = range.count / 4
+      let start = range.lowerBound
+      for offset in start..<start + quarter {
+        add(offset, to: 0)
+        add(offset + quarter, to: 1)
+        add(offset + 2 * quarter, to: 2)
+        add(offset + 3 * quarter, to: 3)
+      }
+      for index in start + 4 * quarter..<range.upperBound { add(index, to: 3) }
+      for set in 1..<4 {
+        for bin in 0..<count {
+          bins[bin].count += bins[set * count + bin].count
+          bins[bin].summary.include(bins[set * count + bin].summary)
+        }
+      }
     }
 
     /// Appends two subtrees built apart as the children at `first` and
@@ -417,7 +607,9 @@ extension BoundingVolumeHierarchy {
     ) -> (left: Task, right: Task)? {
       let range = task.range
       let bounds = task.summary.bounds
-      switch decide(primitives, range, task.summary, depth: task.depth) {
+      switch decide(
+        primitives, range, task.summary, depth: task.depth, binned: task.binned)
+      {
       case .leaf:
         nodes[task.node] = Node(
           lower: bounds.lower, upper: bounds.upper,
@@ -447,7 +639,7 @@ extension BoundingVolumeHierarchy {
     /// Leaf or split, and for a split, partitions the range.
     mutating func decide(
       _ primitives: UnsafeMutableBufferPointer<Primitive>, _ range: Range<Int>,
-      _ summary: Summary, depth: Int
+      _ summary: Summary, depth: Int, binned: Bool
     ) -> Decision {
       typealias BVH = BoundingVolumeHierarchy
       let count = range.count
@@ -456,7 +648,9 @@ extension BoundingVolumeHierarchy {
       if depth >= BVH.forcedMedianDepth {
         return small ? .leaf : medianSplit(primitives, range, summary)
       }
-      guard let best = bestBinnedSplit(primitives, range, summary.centroids)
+      guard
+        let best = bestBinnedSplit(
+          primitives, range, summary.centroids, binned: binned)
       else {
         return small ? .leaf : medianSplit(primitives, range, summary)
       }
@@ -475,43 +669,25 @@ extension BoundingVolumeHierarchy {
     }
 
     /// The SAH-cheapest bin boundary (least Σ area·count of the two sides)
-    /// on the widest axis whose centroids can be binned, or nil when none
-    /// can (all centroids equal, or an extent that overflows or whose
-    /// reciprocal does).
-    ///
-    /// Only one axis: binning all three cost twice the build time and
-    /// rendered no faster in the benchmarks behind `defaultThreshold`. Nodes
-    /// of a few spheres use fewer bins: two per sphere, at least four.
+    /// on the axis `Binning` chooses, or nil when there is none. Bins the
+    /// range unless `binned` says `bins` holds its bins already.
     mutating func bestBinnedSplit(
       _ primitives: UnsafeMutableBufferPointer<Primitive>, _ range: Range<Int>,
-      _ centroids: Bounds
+      _ centroids: Bounds, binned: Bool
     ) -> (
       axis: Int, origin: Scalar, scale: Scalar, bins: Int, bin: Int,
       cost: Double, left: Summary, right: Summary
     )? {
-      let binCount = Swift.min(
-        BoundingVolumeHierarchy.binCount, Swift.max(4, 2 * range.count))
-      var axis = -1
-      var scale: Scalar = 0
-      for candidate in 0..<3 {
-        let extent = centroids.upper[candidate] - centroids.lower[candidate]
-        let candidateScale = Scalar(binCount) / extent
-        guard extent > 0 && extent.isFinite && candidateScale.isFinite else {
-          continue
-        }
-        if axis < 0 || candidateScale < scale {
-          axis = candidate
-          scale = candidateScale
-        }
+      guard let binning = Binning(centroids, primitives: range.count) else {
+        return nil
       }
-      guard axis >= 0 else { return nil }
-      let origin = centroids.lower[axis]
+      let (axis, origin, scale, binCount) = (
+        binning.axis, binning.origin, binning.scale, binning.count
+      )
       return bins.withUnsafeMutableBufferPointer { bins in
-        for index in 0..<binCount { bins[index] = Bin() }
-        for primitive in primitives[range] {
-          let bin = Self.bin(primitive.centroid[axis], origin, scale, binCount)
-          bins[bin].count += 1
-          bins[bin].summary.include(primitive)
+        if !binned {
+          for index in 0..<binCount { bins[index] = Bin() }
+          Self.fill(bins, primitives, range, binning)
         }
         var right = Bounds()
         var rightCount = 0
@@ -615,15 +791,11 @@ extension BoundingVolumeHierarchy {
     }
   }
 
-  /// The primitives, shared by the two threads of a build, which work on
-  /// disjoint ranges of them.
-  struct Shared: @unchecked Sendable {
-    let primitives: UnsafeMutableBufferPointer<Primitive>
-  }
-
-  /// Where the two threads of a build leave their halves, one slot each.
-  struct SharedBuilders: @unchecked Sendable {
-    let builders: UnsafeMutableBufferPointer<Builder>
+  /// Pointers and closures shared by the threads of a build, which work on
+  /// disjoint parts of what they point to.
+  struct Shared<Value>: @unchecked Sendable {
+    let value: Value
+    init(_ value: Value) { self.value = value }
   }
 }
 
