@@ -123,6 +123,31 @@ final class GroupTests: XCTestCase {
     XCTAssertTrue(Group<Double>().primitives().spheres.isEmpty)
   }
 
+  /// Spheres straight in the root group, spheres nested or moved by a
+  /// transform and the other kinds come out in file order within each kind.
+  func testFlattened_MixedKindsKeepFileOrder() throws {
+    func sphere(_ index: Int) -> Sphere<Double> {
+      Sphere(center: Vector3(Double(index), 0, 0), radius: 1, materialIndex: index)
+    }
+    let shift = try XCTUnwrap(
+      Transform(matrix: .translation(Vector3(0, 5, 0)), object: .sphere(sphere(2))))
+    let squash = try XCTUnwrap(
+      Transform(matrix: .scale(Vector3(1, 2, 1)), object: .sphere(sphere(9))))
+    let triangle = Triangle<Double>(
+      Vector3(0, 0, 0), Vector3(1, 0, 0), Vector3(0, 1, 0), materialIndex: 7)
+    let root = Group([
+      .sphere(sphere(0)), .triangle(triangle), .sphere(sphere(1)),
+      .transform(shift), .transform(squash),
+      .group(Group([.sphere(sphere(3)), .triangle(triangle)])), .sphere(sphere(4)),
+    ])
+    let all = root.flattened()
+    XCTAssertEqual(all.spheres.map(\.materialIndex), [0, 1, 2, 3, 4])
+    XCTAssertEqual(all.spheres[2].center, Vector3(2, 5, 0))
+    XCTAssertEqual(all.triangles.count, 2)
+    XCTAssertEqual(all.transformedSpheres.map(\.sphere.materialIndex), [9])
+    XCTAssertTrue(all.planes.isEmpty)
+  }
+
   /// `SceneObject` dispatches to the object it holds.
   func testSceneObject_Dispatches() {
     let sphere = Sphere<Double>(center: Vector3(0, 0, -10), radius: 2)

@@ -672,6 +672,92 @@ final class BoundingVolumeHierarchyTests: XCTestCase {
     XCTAssertEqual(concurrent.order, again.order)
   }
 
+  /// Spheres give the same tree whether their boxes, the root's bounds
+  /// and bins and the two subtrees are computed on two threads or one, and
+  /// the same as their boxes given directly.
+  func testBuildFromSpheres_IsDeterministic_ConcurrentOrNot() {
+    typealias Kernel = StableKernel<Double>
+    var generator = SplitMix64(seed: 0x5FE)
+    let spheres = (0..<5000).map { index -> Sphere<Double> in
+      let center = generator.unitVector(Double.self) * generator.logUniform(1, 100)
+      return Sphere(
+        center: center, radius: generator.logUniform(0.01, 2), materialIndex: 0)
+    }
+    let eye = Vector3<Double>(0, 0, 150)
+    let records = spheres.map { Kernel.makeSphere($0, eye: eye) }
+    let origin = Kernel.frameOrigin(eye: eye)
+    typealias BVH = BoundingVolumeHierarchy<Double>
+    let sequential = BVH(
+      spheres: records, kernel: Kernel.self, rayOrigin: origin,
+      concurrentFrom: .max)
+    let concurrent = BVH(
+      spheres: records, kernel: Kernel.self, rayOrigin: origin,
+      concurrentFrom: 100)
+    let boxes = records.map { record in
+      let (center, radius) = Kernel.centerAndRadius(record)
+      return BVH.box(
+        center: center, radius: radius, rayOrigin: origin,
+        model: .cancellationFree)
+    }
+    let fromBoxes = BVH(boxes: boxes, concurrentFrom: .max)
+    XCTAssertEqual(sequential.nodes, concurrent.nodes)
+    XCTAssertEqual(sequential.order, concurrent.order)
+    XCTAssertEqual(sequential.depth, concurrent.depth)
+    XCTAssertEqual(sequential.nodes, fromBoxes.nodes)
+    XCTAssertEqual(sequential.order, fromBoxes.order)
+  }
+
+  /// Binning a range as four blocks gives the bins of one pass bit for bit,
+  /// signed zeros included, for every length around the blocks' edges.
+  func testFill_FourBlocksGiveTheBinsOfOnePass() {
+    typealias BVH = BoundingVolumeHierarchy<Float>
+    var generator = SplitMix64(seed: 0xF11)
+    // Coordinates from a few values, zeros of both signs among them, so
+    // that bins see many equal values.
+    let values: [Float] = [-0.0, 0.0, 1, -1, 2.5, 0.0, -0.0]
+    func pick() -> Float { values[Int(generator.next() % UInt64(values.count))] }
+    for count in [1, 2, 63, 64, 65, 66, 67, 200, 1001] {
+      var primitives = (0..<count).map { index -> BVH.Primitive in
+        let lower = Vector3(pick(), pick(), pick())
+        let upper = Vector3(
+          Swift.max(lower.x, pick()), Swift.max(lower.y, pick()),
+          Swift.max(lower.z, pick()))
+        return BVH.Primitive(
+          lower: lower, upper: upper, index: Int32(index))
+      }
+      var centroids = BVH.Bounds()
+      for primitive in primitives {
+        centroids.include(lower: primitive.centroid, upper: primitive.centroid)
+      }
+      guard let binning = BVH.Binning(centroids, primitives: count) else {
+        continue
+      }
+      var onePass = [BVH.Bin](repeating: BVH.Bin(), count: binning.count)
+      var blocks = [BVH.Bin](repeating: BVH.Bin(), count: 4 * binning.count)
+      primitives.withUnsafeMutableBufferPointer { primitives in
+        onePass.withUnsafeMutableBufferPointer {
+          BVH.Builder.fill($0, primitives, primitives.indices, binning)
+        }
+        blocks.withUnsafeMutableBufferPointer {
+          BVH.Builder.fill($0, primitives, primitives.indices, binning)
+        }
+      }
+      func bits(_ bounds: BVH.Bounds) -> [UInt32] {
+        [bounds.lower.x, bounds.lower.y, bounds.lower.z, bounds.upper.x,
+         bounds.upper.y, bounds.upper.z].map(\.bitPattern)
+      }
+      for bin in 0..<binning.count {
+        XCTAssertEqual(onePass[bin].count, blocks[bin].count, "\(count) \(bin)")
+        XCTAssertEqual(
+          bits(onePass[bin].summary.bounds), bits(blocks[bin].summary.bounds),
+          "\(count) \(bin)")
+        XCTAssertEqual(
+          bits(onePass[bin].summary.centroids),
+          bits(blocks[bin].summary.centroids), "\(count) \(bin)")
+      }
+    }
+  }
+
   /// Every box holds the sphere with room for the kernel's rounding: more
   /// room for the textbook kernel, whose reach grows with √ε·distance.
   func testBox_HoldsSphereWithRoomForRounding() {

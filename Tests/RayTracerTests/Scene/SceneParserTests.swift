@@ -229,6 +229,28 @@ final class SceneParserTests: XCTestCase {
     }
   }
 
+  /// The file's bytes exactly, read in one call when its size is known.
+  func testReadFile_ReadsEveryByte() throws {
+    let path = FileManager.default.temporaryDirectory
+      .appendingPathComponent("raytrace-bytes-\(UUID().uuidString)").path
+    var generator = SplitMix64(seed: 0xF17E)
+    for count in [0, 1, 65_536, 200_003] {
+      let bytes = (0..<count).map { _ in UInt8(truncatingIfNeeded: generator.next()) }
+      try Data(bytes).write(to: URL(fileURLWithPath: path))
+      XCTAssertEqual(try readFile(path), bytes, "\(count) bytes")
+    }
+    try? FileManager.default.removeItem(atPath: path)
+  }
+
+  #if os(Linux)
+  /// A regular file whose size reads as 0 (as under /proc) is still read
+  /// to its end.
+  func testReadFile_ReadsPastTheReportedSize() throws {
+    let bytes = try readFile("/proc/self/status")
+    XCTAssertTrue(String(decoding: bytes, as: UTF8.self).contains("Name:"))
+  }
+  #endif
+
   // MARK: - Malformed scenes
 
   struct Malformed {
