@@ -3,6 +3,7 @@ import Glibc
 #elseif canImport(Darwin)
 import Darwin
 #endif
+import Dispatch
 
 /// Reads the course's scene format:
 ///
@@ -50,6 +51,12 @@ public struct SceneParser {
   /// Transforms open at the current position: only the outermost one checks
   /// the geometry it produces, so each primitive is moved and checked once.
   private var openTransforms = 0
+  /// The material a `SphereRun` gives the spheres it reads.
+  private var currentMaterial = 0
+  private var splicedObjects = 0
+  private var concurrentFrom = (
+    groupSize: SceneParser.concurrentGroupSize, bytes: SceneParser.concurrentBytes
+  )
 
   /// Parses `text`; `file` names it in messages.
   public static func parse(_ text: String, file: String) throws(SceneError) -> Scene {
@@ -60,6 +67,20 @@ public struct SceneParser {
   /// holds, and what the fuzzer (Fuzz/FuzzSceneParser.swift) feeds.
   static func parse(bytes: [UInt8], file: String) throws(SceneError) -> Scene {
     var parser = SceneParser(bytes: bytes, file: file)
+    return try parser.parseScene()
+  }
+
+  /// As `parse(bytes:file:)`, reading groups of at least `groupSize`
+  /// objects on two threads where at least `bytes` are left: for tests,
+  /// which split small files. `spliced` counts the objects the second
+  /// thread read.
+  static func parse(
+    bytes: [UInt8], file: String, concurrentFrom: (groupSize: Int, bytes: Int),
+    spliced: inout Int
+  ) throws(SceneError) -> Scene {
+    var parser = SceneParser(bytes: bytes, file: file)
+    parser.concurrentFrom = concurrentFrom
+    defer { spliced = parser.splicedObjects }
     return try parser.parseScene()
   }
 
@@ -339,17 +360,61 @@ public struct SceneParser {
   ) throws(SceneError) -> Group<Double> {
     try expect(.open, "'{' after Group")
     let declared = try count("numObjects", in: "Group")
-    var material = inherited
-    var objects: [SceneObject<Double>] = []
+    var state = GroupState(declared: declared, depth: depth, material: inherited)
     let reserved = min(declared.value, objectBudget - reservedObjects)
     reservedObjects += reserved
-    objects.reserveCapacity(reserved)
+    state.objects.reserveCapacity(reserved)
+    var first: SceneToken?
+    if let split = speculationPoint(declared: declared.value) {
+      switch try parseObjectsAlongside(&state, from: split) {
+      case .closed(let group): return group
+      case .reached(let token): first = token
+      case .spliced: first = nil
+      }
+    }
+    guard case .closed(let group) = try parseObjects(&state, first: first) else {
+      preconditionFailure("a group read without a limit ends at its '}'")
+    }
+    return group
+  }
+
+  /// A group being read: its objects so far and the current material.
+  struct GroupState {
+    let declared: (value: Int, token: SceneToken)
+    let depth: Int
+    var material: Int
+    var objects: [SceneObject<Double>] = []
+  }
+
+  enum GroupProgress {
+    case closed(Group<Double>)
+    /// The first token at or past the limit, not yet looked at.
+    case reached(SceneToken)
+    /// Another parser's objects were added; go on from where it stopped.
+    case spliced
+  }
+
+  /// Reads the group's objects, starting with `first` when given, up to
+  /// its closing brace or the first token that starts at or past `limit`.
+  private mutating func parseObjects(
+    _ state: inout GroupState, first: SceneToken?, limit: Int = .max
+  ) throws(SceneError) -> GroupProgress {
+    var pending = first
     while true {
-      let token = try next()
+      let token: SceneToken
+      if let given = pending {
+        token = given
+        pending = nil
+      } else {
+        token = try next()
+        if token.start >= limit { return .reached(token) }
+      }
       switch token.kind {
       case .close:
-        try checkCount(objects.count, declared, "Group", "numObjects", "object", token)
-        return Group(objects)
+        try checkCount(
+          state.objects.count, state.declared, "Group", "numObjects", "object",
+          token)
+        return .closed(Group(state.objects))
       case .end, .open:
         throw unexpectedEnd(token, in: "Group")
       case .word:
@@ -359,17 +424,168 @@ public struct SceneParser {
         let valueToken = peekStart()
         let value = try wholeNumber("MaterialIndex")
         pendingMaterialChecks.append((value, valueToken))
-        material = value
+        state.material = value
         continue
       }
       guard Self.objectKinds.contains(where: { tokenizer.matches(token, $0) }) else {
         throw unexpected(
           token, expected: "an object", choices: Self.objectKinds.map { "\($0)" } + ["MaterialIndex"])
       }
-      if objects.count == declared.value {
-        throw tooMany(declared, "Group", "numObjects", "object", token)
+      if state.objects.count == state.declared.value {
+        throw tooMany(state.declared, "Group", "numObjects", "object", token)
       }
-      objects.append(try parseObject(token, depth: depth, material: material))
+      state.objects.append(
+        try parseObject(token, depth: state.depth, material: state.material))
+    }
+  }
+
+  // MARK: - Reading a large group on two threads
+
+  /// Groups declaring fewer objects are read on one thread.
+  static let concurrentGroupSize = 20_000
+  /// Nor is a file split where less than this is left to read.
+  static let concurrentBytes = 1 << 20
+
+  /// Where a second thread can start reading a large group's objects: the
+  /// start of the line nearest the middle of what is left of the file.
+  /// Nothing spans a line break (a comment ends there), so the tokens from
+  /// there on are the ones the sequential parse reads.
+  private func speculationPoint(declared: Int) -> Int? {
+    let start = tokenizer.position.index
+    let bytes = tokenizer.bytes
+    guard declared >= concurrentFrom.groupSize,
+      bytes.count - start >= concurrentFrom.bytes,
+      sysconf(Int32(_SC_NPROCESSORS_ONLN)) > 1
+    else { return nil }
+    var index = start + (bytes.count - start) / 2
+    while index < bytes.count && bytes[index] != UInt8(ascii: "\n") { index += 1 }
+    return index + 1 < bytes.count ? index + 1 : nil
+  }
+
+  /// Reads the group up to `split` here while another thread reads plain
+  /// spheres and material indices from `split` on (see `SphereRun`); when
+  /// this thread arrives there at the group's level, it takes the other's
+  /// objects and goes on from where the other stopped.
+  ///
+  /// Whatever the other thread read, the result and every error are the
+  /// sequential parse's: the other thread stops before anything it does
+  /// not read exactly as this one would (anything but a well-formed
+  /// sphere or `MaterialIndex`), and its objects are taken only when this
+  /// thread reaches the same token at the group's level with room for
+  /// them under `numObjects`; otherwise this thread reads on itself.
+  private mutating func parseObjectsAlongside(
+    _ state: inout GroupState, from split: Int
+  ) throws(SceneError) -> GroupProgress {
+    var run = SphereRun(
+      bytes: tokenizer.bytes, file: file, from: split,
+      capacity: state.declared.value - state.objects.count)
+    var outcome: Result<GroupProgress, SceneError> = .success(.spliced)
+    withUnsafeMutablePointer(to: &self) { parser in
+      withUnsafeMutablePointer(to: &state) { state in
+        withUnsafeMutablePointer(to: &run) { run in
+          withUnsafeMutablePointer(to: &outcome) { outcome in
+            let shared = Unchecked((parser, state, run, outcome))
+            DispatchQueue.concurrentPerform(iterations: 2) { thread in
+              let (parser, state, run, outcome) = shared.value
+              if thread == 0 {
+                do throws(SceneError) {
+                  outcome.pointee = .success(
+                    try parser.pointee.parseObjects(
+                      &state.pointee, first: nil, limit: split))
+                } catch {
+                  outcome.pointee = .failure(error)
+                }
+              } else {
+                run.pointee.read()
+              }
+            }
+          }
+        }
+      }
+    }
+    let progress = try outcome.get()
+    guard case .reached(let token) = progress, let runFirst = run.first,
+      token.start == runFirst.start, !run.objects.isEmpty,
+      run.objects.count <= state.declared.value - state.objects.count
+    else { return progress }
+    // The other parser counted lines from 1 at `split`.
+    let lines = token.line - runFirst.line
+    let inherited = state.material
+    for (offset, object) in run.objects.enumerated() {
+      if offset < run.inheritingCount, case .sphere(var sphere) = object {
+        sphere.materialIndex = inherited
+        state.objects.append(.sphere(sphere))
+      } else {
+        state.objects.append(object)
+      }
+    }
+    for var check in run.parser.pendingMaterialChecks {
+      check.token.line += lines
+      pendingMaterialChecks.append(check)
+    }
+    if run.sawMaterialIndex {
+      state.material = run.parser.currentMaterial
+    }
+    splicedObjects += run.objects.count
+    var resume = run.stop
+    resume.line += lines
+    tokenizer.position = resume
+    return .spliced
+  }
+
+  /// Plain spheres and `MaterialIndex` lines read from a point in the
+  /// middle of a group, by a parser of its own, until anything else: the
+  /// group's `}`, another kind of object, or an error.
+  struct SphereRun {
+    var parser: SceneParser
+    let capacity: Int
+    /// The first token read, if any.
+    var first: SceneToken?
+    var objects: [SceneObject<Double>] = []
+    /// How many objects come before the first `MaterialIndex`, and so take
+    /// the material current where the run starts.
+    var inheritingCount = 0
+    var sawMaterialIndex = false
+    /// Where the first token not read starts.
+    var stop: SceneTokenizer.Position
+
+    init(bytes: [UInt8], file: String, from split: Int, capacity: Int) {
+      parser = SceneParser(bytes: bytes, file: file)
+      parser.tokenizer.position = SceneTokenizer.Position(
+        index: split, line: 1, lineStart: split)
+      self.capacity = capacity
+      stop = parser.tokenizer.position
+    }
+
+    mutating func read() {
+      objects.reserveCapacity(
+        Swift.min(
+          capacity,
+          (parser.tokenizer.bytes.count - stop.index) / SceneParser.minimumObjectLength))
+      // A placeholder no `MaterialIndex` can give.
+      parser.currentMaterial = -1
+      while objects.count < capacity {
+        let token = parser.tokenizer.next()
+        if first == nil { first = token }
+        guard token.kind == .word,
+          token.end - token.start <= SceneParser.maximumWordLength
+        else { return }
+        if parser.tokenizer.matches(token, "Sphere") {
+          guard let sphere = try? parser.parseSphere(material: parser.currentMaterial)
+          else { return }
+          objects.append(.sphere(sphere))
+          if !sawMaterialIndex { inheritingCount += 1 }
+        } else if parser.tokenizer.matches(token, "MaterialIndex") {
+          let valueToken = parser.peekStart()
+          guard let value = try? parser.wholeNumber("MaterialIndex") else { return }
+          parser.pendingMaterialChecks.append((value, valueToken))
+          parser.currentMaterial = value
+          sawMaterialIndex = true
+        } else {
+          return
+        }
+        stop = parser.tokenizer.position
+      }
     }
   }
 
@@ -981,4 +1197,10 @@ func readFile(_ path: String) throws(FileReadError) -> [UInt8] {
     throw FileReadError(reason: "cannot read the file: \(String(cString: strerror(errno)))")
   }
   return bytes
+}
+
+/// Pointers handed to the threads of a parse, which touch disjoint state.
+private struct Unchecked<Value>: @unchecked Sendable {
+  let value: Value
+  init(_ value: Value) { self.value = value }
 }

@@ -23,6 +23,18 @@ struct SceneTokenizer {
     self.bytes = bytes
   }
 
+  /// Where the next token is looked for: enough to resume there.
+  struct Position {
+    var index: Int
+    var line: Int
+    var lineStart: Int
+  }
+
+  var position: Position {
+    get { Position(index: index, line: line, lineStart: lineStart) }
+    set { (index, line, lineStart) = (newValue.index, newValue.line, newValue.lineStart) }
+  }
+
   mutating func next() -> SceneToken {
     bytes.withUnsafeBufferPointer { buffer in
       skipBlanksAndComments(buffer)

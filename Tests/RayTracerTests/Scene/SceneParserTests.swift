@@ -687,6 +687,80 @@ final class SceneParserTests: XCTestCase {
     XCTAssertGreaterThan(outcomes.failed, 1000)
   }
 
+  /// A large group read on two threads gives the sequential parse's scene
+  /// or error, to the line and column, whatever the file: mutated scenes
+  /// of spheres, material indices, comments, a nested group, a transform
+  /// and a plane, split near their middle.
+  func testParse_GroupReadOnTwoThreads_MatchesOneThread() throws {
+    var lines = [
+      Self.camera.trimmingCharacters(in: .newlines),
+      "Materials { numMaterials 3 Material { diffuseColor 1 0 0 }",
+      "  Material { diffuseColor 0 1 0 } Material { diffuseColor 0 0 1 } }",
+      "Group {", "  numObjects 57", "  MaterialIndex 1",
+    ]
+    for index in 0..<60 {
+      switch index {
+      case 5: lines.append("  Group { numObjects 1 Sphere { center 0 0 1 radius 2 } }")
+      case 8: lines.append("  Transform { Translate 1 0 0 Sphere { radius 1 center 0 0 0 } }")
+      case 10: lines.append("  Plane { normal 0 1 0 offset -2 }")
+      case 12: lines.append("  MaterialIndex 2  # a comment {")
+      case 45: lines.append("  MaterialIndex 0")
+      case 50: lines.append("  # Sphere { center")
+      default:
+        lines.append("  Sphere { center \(index) -\(index).5 0.25  radius 0.\(index + 1) }")
+      }
+    }
+    lines.append("}")
+    let original = Array(lines.joined(separator: "\n").utf8)
+    let replacements = [
+      "{", "}", "Group", "Sphere", "MaterialIndex", "7", "-1", "nan", "#",
+      "radius", "center", "numObjects", "\n",
+    ]
+    var outcomes = (parsed: 0, failed: 0, spliced: 0)
+    forEachSeed(1500, base: 0x2_7EAD) { generator, seed in
+      var bytes = original
+      if seed != 0x2_7EAD {
+        for _ in 0..<Int.random(in: 1...3, using: &generator) {
+          mutate(&bytes, replacements: replacements, using: &generator)
+        }
+      }
+      let one: Result<Scene, SceneError>
+      let two: Result<Scene, SceneError>
+      var spliced = 0
+      do throws(SceneError) {
+        one = .success(try SceneParser.parse(bytes: bytes, file: "t.txt"))
+      } catch {
+        one = .failure(error)
+      }
+      do throws(SceneError) {
+        two = .success(
+          try SceneParser.parse(
+            bytes: bytes, file: "t.txt", concurrentFrom: (1, 1),
+            spliced: &spliced))
+      } catch {
+        two = .failure(error)
+      }
+      if spliced > 0 { outcomes.spliced += 1 }
+      if seed == 0x2_7EAD {
+        XCTAssertGreaterThan(spliced, 10, "the unmutated scene is split")
+      }
+      switch (one, two) {
+      case (.success(let one), .success(let two)):
+        outcomes.parsed += 1
+        XCTAssertEqual(one.root, two.root, "seed \(seed)")
+      case (.failure(let one), .failure(let two)):
+        outcomes.failed += 1
+        XCTAssertEqual(one, two, "seed \(seed)")
+      default:
+        XCTFail("seed \(seed): \(one) against \(two)")
+      }
+    }
+    print("group read on two threads: \(outcomes)")
+    XCTAssertGreaterThan(outcomes.parsed, 100)
+    XCTAssertGreaterThan(outcomes.failed, 300)
+    XCTAssertGreaterThan(outcomes.spliced, 300)
+  }
+
   private func mutate(
     _ bytes: inout [UInt8], replacements: [String],
     using generator: inout SplitMix64
