@@ -758,6 +758,62 @@ final class BoundingVolumeHierarchyTests: XCTestCase {
     }
   }
 
+  /// The partition leaves the primitives as a two-pointer scan does, for
+  /// every boundary between bins and ranges of many lengths.
+  func testPartition_MatchesTwoPointerScan() {
+    typealias BVH = BoundingVolumeHierarchy<Double>
+    var generator = SplitMix64(seed: 0x9A27)
+    for count in [2, 3, 5, 17, 100, 1000] {
+      let primitives = (0..<count).map { index -> BVH.Primitive in
+        let center = Vector3<Double>(
+          generator.uniform(-10...10), generator.uniform(-10...10),
+          generator.uniform(-10...10))
+        let box = Vector3<Double>(0.5, 0.5, 0.5)
+        return BVH.Primitive(
+          lower: center - box, upper: center + box, index: Int32(index))
+      }
+      var centroids = BVH.Bounds()
+      for primitive in primitives {
+        centroids.include(lower: primitive.centroid, upper: primitive.centroid)
+      }
+      guard let binning = BVH.Binning(centroids, primitives: count) else {
+        return XCTFail("\(count) random centroids cannot be binned")
+      }
+      var builder = BVH.Builder()
+      builder.bins.withUnsafeMutableBufferPointer { bins in
+        var mutable = primitives
+        mutable.withUnsafeMutableBufferPointer {
+          BVH.Builder.fill(bins, $0, $0.indices, binning)
+        }
+      }
+      for firstRight in 1..<binning.count {
+        func isLeft(_ primitive: BVH.Primitive) -> Bool {
+          binning.bin(primitive.centroid) < firstRight
+        }
+        var expected = primitives
+        var low = 0
+        var high = count - 1
+        while true {
+          while low <= high && isLeft(expected[low]) { low += 1 }
+          while low < high && !isLeft(expected[high]) { high -= 1 }
+          guard low < high else { break }
+          expected.swapAt(low, high)
+          low += 1
+          high -= 1
+        }
+        var actual = primitives
+        let middle = actual.withUnsafeMutableBufferPointer {
+          builder.partition(
+            $0, $0.indices, axis: binning.axis, origin: binning.origin,
+            scale: binning.scale, bins: binning.count, firstRight: firstRight)
+        }
+        XCTAssertEqual(middle, low, "\(count) \(firstRight)")
+        XCTAssertEqual(
+          actual.map(\.index), expected.map(\.index), "\(count) \(firstRight)")
+      }
+    }
+  }
+
   /// Every box holds the sphere with room for the kernel's rounding: more
   /// room for the textbook kernel, whose reach grows with √ε·distance.
   func testBox_HoldsSphereWithRoomForRounding() {
