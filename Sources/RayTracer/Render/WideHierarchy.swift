@@ -92,62 +92,61 @@ struct WideHierarchy<Scalar: RayScalar>: Sendable {
     }
     var wide: [Node] = []
     wide.reserveCapacity(binary.nodes.count / 2 + 1)
-    let binaryNodes = binary.nodes
-
-    func surfaceArea(_ node: BoundingVolumeHierarchy<Scalar>.Node) -> Scalar {
-      let size = node.upper - node.lower
-      return size.x * size.y + size.y * size.z + size.z * size.x
+    root = binary.nodes.withUnsafeBufferPointer { binaryNodes in
+      Self.collapse(0, binaryNodes, rayOrigin: rayOrigin, into: &wide)
     }
-
-    /// The reference to binary node `index`, its subtree collapsed into
-    /// `wide` depth first.
-    func collapse(_ index: Int) -> Int32 {
-      let node = binaryNodes[index]
-      if node.isLeaf { return ~(node.index << 3 | node.count) }
-      // Open the child with the largest surface until there are four: the
-      // children a ray is likeliest to enter are then tested together.
-      var slots = (Int(node.index), Int(node.index) + 1, 0, 0)
-      var count = 2
-      withUnsafeMutableBytes(of: &slots) { bytes in
-        let slots = bytes.bindMemory(to: Int.self)
-        while count < 4 {
-          var opened = -1
-          var largest = -Scalar.infinity
-          for slot in 0..<count where !binaryNodes[slots[slot]].isLeaf {
-            let area = surfaceArea(binaryNodes[slots[slot]])
-            if opened < 0 || area > largest {
-              opened = slot
-              largest = area
-            }
-          }
-          guard opened >= 0 else { break }
-          let child = binaryNodes[slots[opened]]
-          slots[opened] = Int(child.index)
-          slots[count] = Int(child.index) + 1
-          count += 1
-        }
-      }
-      let position = wide.count
-      wide.append(Node())
-      var result = Node()
-      for lane in 0..<count {
-        let child = withUnsafeBytes(of: slots) { $0.load(fromByteOffset: lane * 8, as: Int.self) }
-        let box = binaryNodes[child]
-        result.lowerX[lane] = Self.roundedDown(box.lower.x - rayOrigin.x)
-        result.lowerY[lane] = Self.roundedDown(box.lower.y - rayOrigin.y)
-        result.lowerZ[lane] = Self.roundedDown(box.lower.z - rayOrigin.z)
-        result.upperX[lane] = Self.roundedUp(box.upper.x - rayOrigin.x)
-        result.upperY[lane] = Self.roundedUp(box.upper.y - rayOrigin.y)
-        result.upperZ[lane] = Self.roundedUp(box.upper.z - rayOrigin.z)
-        result.children[lane] = collapse(child)
-      }
-      wide[position] = result
-      return Int32(truncatingIfNeeded: position)
-    }
-
-    root = collapse(0)
     nodes = wide
     order = binary.order
+  }
+
+  /// The reference to binary node `index`, its subtree collapsed into
+  /// `wide` depth first. A static function with its state passed in: as a
+  /// nested function capturing `wide` it paid an exclusivity check on
+  /// every access, a tenth of compiling 10⁶ spheres.
+  private static func collapse(
+    _ index: Int, _ binaryNodes: UnsafeBufferPointer<BoundingVolumeHierarchy<Scalar>.Node>,
+    rayOrigin: Vector3<Scalar>, into wide: inout [Node]
+  ) -> Int32 {
+    let node = binaryNodes[index]
+    if node.isLeaf { return ~(node.index << 3 | node.count) }
+    // Open the child with the largest surface until there are four: the
+    // children a ray is likeliest to enter are then tested together.
+    var slots = SIMD4<Int32>(node.index, node.index + 1, 0, 0)
+    var count = 2
+    while count < 4 {
+      var opened = -1
+      var largest = -Scalar.infinity
+      for slot in 0..<count where !binaryNodes[Int(slots[slot])].isLeaf {
+        let box = binaryNodes[Int(slots[slot])]
+        let size = box.upper - box.lower
+        let area = size.x * size.y + size.y * size.z + size.z * size.x
+        if opened < 0 || area > largest {
+          opened = slot
+          largest = area
+        }
+      }
+      guard opened >= 0 else { break }
+      let child = binaryNodes[Int(slots[opened])]
+      slots[opened] = child.index
+      slots[count] = child.index + 1
+      count += 1
+    }
+    let position = wide.count
+    wide.append(Node())
+    var result = Node()
+    for lane in 0..<count {
+      let box = binaryNodes[Int(slots[lane])]
+      result.lowerX[lane] = roundedDown(box.lower.x - rayOrigin.x)
+      result.lowerY[lane] = roundedDown(box.lower.y - rayOrigin.y)
+      result.lowerZ[lane] = roundedDown(box.lower.z - rayOrigin.z)
+      result.upperX[lane] = roundedUp(box.upper.x - rayOrigin.x)
+      result.upperY[lane] = roundedUp(box.upper.y - rayOrigin.y)
+      result.upperZ[lane] = roundedUp(box.upper.z - rayOrigin.z)
+      result.children[lane] = collapse(
+        Int(slots[lane]), binaryNodes, rayOrigin: rayOrigin, into: &wide)
+    }
+    wide[position] = result
+    return Int32(truncatingIfNeeded: position)
   }
 
   /// A Float at most `value`, which was rounded to nearest from the exact
