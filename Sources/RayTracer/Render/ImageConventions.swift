@@ -92,11 +92,19 @@ extension ImageStyle {
     guard value > 0 else { return 0 }
     guard value < 1 else { return 255 }
     let scaled = value * 255
-    // Rounded to an integer in S first, then through Double, which holds
-    // it exactly: converting S to an integer directly is the standard
-    // library's generic bit-by-bit path even when specialised, and was a
-    // quarter of a PNG write's time.
+    if S.significandBitCount <= Double.significandBitCount {
+      // Exact in Double, and truncated by one conversion: converting S to
+      // an integer directly is the standard library's generic bit-by-bit
+      // path even when specialised, and `rounded` a libm call without
+      // SSE4.1; this runs three times a pixel inside the render loop.
+      let exact = Double(scaled)
+      let whole = Int(exact)
+      let up = self == .mit && exact - Double(whole) >= 0.5
+      return UInt8(truncatingIfNeeded: up ? whole + 1 : whole)
+    }
+    // Wider than Double: rounded in S first, then held exactly by Double.
     let whole = self == .course ? scaled.rounded(.towardZero) : scaled.rounded()
     return UInt8(truncatingIfNeeded: Int(Double(whole)))
   }
+
 }
