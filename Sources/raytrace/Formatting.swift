@@ -26,22 +26,22 @@ func formatted(_ value: Double, digits: Int) -> String {
   guard value.isFinite, value != 0 else { return "\(value)" }
   let magnitude = Int(log10(value.magnitude).rounded(.down))
   let decimals = max(0, digits - 1 - magnitude)
-  return String(cString: withFormat("%.\(decimals)f", value))
+  return withFormat("%.\(decimals)f", value)
 }
 
 /// `value` as 1.2e-16, or 0.
 func scientific(_ value: Double) -> String {
   guard value != 0 else { return "0" }
   guard value.isFinite else { return "\(value)" }
-  return String(cString: withFormat("%.1e", value))
+  return withFormat("%.1e", value)
 }
 
-private func withFormat(_ format: String, _ value: Double) -> [CChar] {
+private func withFormat(_ format: String, _ value: Double) -> String {
   var buffer = [CChar](repeating: 0, count: 64)
   _ = withVaList([value]) { arguments in
     vsnprintf(&buffer, buffer.count, format, arguments)
   }
-  return buffer
+  return String(decoding: buffer.prefix { $0 != 0 }.map { UInt8(bitPattern: $0) }, as: UTF8.self)
 }
 
 /// The `.txt` files directly in `folder`, sorted by name; empty when the
