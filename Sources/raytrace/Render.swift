@@ -1,3 +1,4 @@
+import Dispatch
 import ArgumentParser
 import RayTracer
 
@@ -228,6 +229,12 @@ struct Render: ParsableCommand {
 
   func run() throws {
     let plan = try plan()
+    // Starts a dispatch worker thread while the scene is read, so that the
+    // render's second thread is running when it is handed rows: created on
+    // demand, it sometimes started 2–4 ms late, a third of a small render.
+    if plan.settings.threads > 1 {
+      DispatchQueue.global().async {}
+    }
     let scene: Scene
     var clock = Stopwatch()
     do {
