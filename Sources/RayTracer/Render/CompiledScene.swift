@@ -183,30 +183,21 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     corners: (Vector3<Double>, Vector3<Double>, Vector3<Double>, Vector3<Double>),
     into candidates: UnsafeMutableBufferPointer<Int32>
   ) -> Int {
-    // Four faces at most, in a tuple: this runs for every tile, and arrays
-    // here were an allocation or two per 64 pixels.
+    // Four faces in a tuple: this runs for every tile, and arrays here
+    // were an allocation or two per 64 pixels.
     let middle = corners.0 + corners.1 + corners.2 + corners.3
-    var faces = (Vector3<Double>.zero, Vector3<Double>.zero, Vector3<Double>.zero, Vector3<Double>.zero)
-    var faceCount = 0
-    func addFace(_ a: Vector3<Double>, _ b: Vector3<Double>) {
+    func face(_ a: Vector3<Double>, _ b: Vector3<Double>) -> Vector3<Double> {
       let normal = a.cross(b)
       let length = normal.length
-      guard length > 1e-300, length.isFinite else { return }
-      var unit = normal / length
-      if unit.dot(middle) < 0 { unit = -unit }
-      switch faceCount {
-      case 0: faces.0 = unit
-      case 1: faces.1 = unit
-      case 2: faces.2 = unit
-      default: faces.3 = unit
-      }
-      faceCount += 1
+      guard length > 1e-300, length.isFinite else { return .zero }
+      let unit = normal / length
+      return unit.dot(middle) < 0 ? -unit : unit
     }
-    addFace(corners.0, corners.1)
-    addFace(corners.1, corners.2)
-    addFace(corners.2, corners.3)
-    addFace(corners.3, corners.0)
-    // A missing face (degenerate edge) stays zero, which excludes nothing.
+    let faces = (
+      face(corners.0, corners.1), face(corners.1, corners.2),
+      face(corners.2, corners.3), face(corners.3, corners.0)
+    )
+    // A degenerate edge's face is zero, which excludes nothing.
     let slack = 64 * Double(Scalar.ulpOfOne)
     var count = 0
     for sphere in cullCenters.indices {

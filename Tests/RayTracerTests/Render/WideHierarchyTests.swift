@@ -144,8 +144,11 @@ final class WideHierarchyTests: XCTestCase {
   /// Rays parallel to a box face and 10⁻¹⁰ radii inside it: each sphere
   /// is placed so that its extreme point along ±x or ±y lies just beyond
   /// the eye's coordinate there, and a ray with that direction component
-  /// exactly 0 crosses the cap between. Far below Float's resolution, so a
-  /// face rounded inward by its conversion to Float would lose the hit.
+  /// exactly 0 (an infinite reciprocal on the wide path) crosses the cap
+  /// between. Faces are stored relative to the eye, so the Float rounding
+  /// cannot move such a face across the ray; what this checks is the
+  /// zero-component slab arithmetic next to a face
+  /// (`testStructure_RandomScenes` is what catches inward rounding).
   func testNearest_RaysParallelToFacesJustInside() {
     func check<Kernel: IntersectionKernel>(_: Kernel.Type) {
       var generator = SplitMix64(seed: 8)
