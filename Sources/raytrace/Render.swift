@@ -281,8 +281,8 @@ struct Render: ParsableCommand {
     printError(
       "scene: \(scenePath): \(report.spheres) spheres, \(report.planes) planes, "
         + "\(report.triangles) triangles, \(report.ellipsoids) transformed spheres; "
-        + "BVH over spheres \(report.usesHierarchy ? "used" : "not used"), "
-        + "over triangles \(report.usesTriangleHierarchy ? "used" : "not used")")
+        + "nearest sphere by \(report.sphereSearch), "
+        + "nearest triangle by \(report.usesTriangleHierarchy ? "BVH" : "testing each")")
     printError(
       "size: \(settings.width)x\(settings.height), \(report.rays) rays, "
         + "precision \(settings.precision.rawValue), intersection \(settings.method.rawValue), "

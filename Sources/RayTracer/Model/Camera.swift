@@ -124,4 +124,20 @@ public enum ImageStyle: String, CaseIterable, Sendable {
       return height > 1 ? 1 - S(2 * j) / S(height - 1) : 0
     }
   }
+
+  /// The fractional column whose screen x is `x`: `screenX` inverted.
+  public func column(screenX x: Double, width: Int) -> Double {
+    switch self {
+    case .course: return ((x + 1) * Double(width) - 1) / 2
+    case .mit: return width > 1 ? (x + 1) * Double(width - 1) / 2 : 0
+    }
+  }
+
+  /// The fractional row whose screen y is `y`: `screenY` inverted.
+  public func row(screenY y: Double, height: Int) -> Double {
+    switch self {
+    case .course: return ((1 - y) * Double(height) - 1) / 2
+    case .mit: return height > 1 ? (1 - y) * Double(height - 1) / 2 : 0
+    }
+  }
 }

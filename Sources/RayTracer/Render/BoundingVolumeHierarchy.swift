@@ -263,7 +263,7 @@ extension BoundingVolumeHierarchy {
       buffer, initialized in
       summaries.withUnsafeMutableBufferPointer { summaries in
         let shared = Shared((buffer, summaries))
-        inParts(count, parts) { part, range in
+        Parallel.inParts(count, parts) { part, range in
           let (buffer, summaries) = shared.value
           var summary = Summary()
           for index in range {
@@ -285,22 +285,6 @@ extension BoundingVolumeHierarchy {
     return (primitives, summary)
   }
 
-  /// Calls `body` for `parts` consecutive ranges covering 0..<count, each
-  /// on its own thread when there are several.
-  static func inParts(
-    _ count: Int, _ parts: Int, _ body: (Int, Range<Int>) -> Void
-  ) {
-    guard parts > 1 else {
-      body(0, 0..<count)
-      return
-    }
-    withoutActuallyEscaping(body) { body in
-      let shared = Shared(body)
-      DispatchQueue.concurrentPerform(iterations: parts) { part in
-        shared.value(part, count * part / parts..<count * (part + 1) / parts)
-      }
-    }
-  }
 
   /// A sphere's box while building, carried through the partitions so that
   /// each pass reads memory in order.
@@ -503,7 +487,7 @@ extension BoundingVolumeHierarchy {
       var parts = [empty, empty]
       parts.withUnsafeMutableBufferPointer { parts in
         let shared = Shared((primitives, parts))
-        BoundingVolumeHierarchy.inParts(primitives.count, 2) { part, range in
+        Parallel.inParts(primitives.count, 2) { part, range in
           let (primitives, parts) = shared.value
           parts[part].withUnsafeMutableBufferPointer { bins in
             Self.fill(bins, primitives, range, binning)
@@ -819,12 +803,6 @@ extension BoundingVolumeHierarchy {
     }
   }
 
-  /// Pointers and closures shared by the threads of a build, which work on
-  /// disjoint parts of what they point to.
-  struct Shared<Value>: @unchecked Sendable {
-    let value: Value
-    init(_ value: Value) { self.value = value }
-  }
 }
 
 // MARK: - Traversal

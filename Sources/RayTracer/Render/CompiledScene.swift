@@ -22,6 +22,9 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// tile of pixels.
   var cullCenters: [Vector3<Double>] = []
   var cullRadii: [Double] = []
+  /// Spheres left for the renderer to project onto screen tiles: no
+  /// hierarchy, no culling data (see `projectionThreshold`).
+  private(set) var projectsSpheres = false
   /// Triangles in the kernel's frame, in hierarchy order when there is one.
   var triangles: [TriangleRecord<Scalar>] = []
   var triangleMaterials: [Int32] = []
@@ -40,12 +43,18 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   public var usesHierarchy: Bool { hierarchy != nil }
   public var usesTriangleHierarchy: Bool { triangleHierarchy != nil }
 
-  /// - Parameter hierarchyThreshold: the sphere count from which a BVH is
-  ///   built (see `BoundingVolumeHierarchy.defaultThreshold`, and
-  ///   `tileCulledThreshold` for renders that cull per tile).
+  /// - Parameters:
+  ///   - hierarchyThreshold: the sphere count from which a BVH is built
+  ///     (see `BoundingVolumeHierarchy.defaultThreshold`, and
+  ///     `tileCulledThreshold` for renders that cull per tile).
+  ///   - projectionThreshold: the sphere count from which spheres are left
+  ///     in scene order for `ScreenTiles`, with neither a BVH nor culling
+  ///     data; only for single-sample renders, whose rays all pass through
+  ///     pixel centres.
   public init(
     _ scene: Scene, kernel: Kernel.Type = Kernel.self,
-    hierarchyThreshold: Int = BoundingVolumeHierarchy<Scalar>.defaultThreshold
+    hierarchyThreshold: Int = BoundingVolumeHierarchy<Scalar>.defaultThreshold,
+    projectionThreshold: Int = .max
   ) {
     let eyeDouble = scene.camera.center
     camera = PerspectiveCamera(scene.camera)
@@ -61,25 +70,15 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     lights = scene.lights.map(Light.init)
     ambient = Vector3(scene.ambient)
     background = Vector3(scene.background)
-    if spheres.count >= hierarchyThreshold {
-      let bvh = BoundingVolumeHierarchy(
-        spheres: spheres, kernel: Kernel.self, rayOrigin: rayOrigin)
-      let (unordered, unorderedMaterials) = (spheres, sphereMaterials)
-      spheres = Self.map(bvh.order) { unordered[Int($0)] }
-      sphereMaterials = Self.map(bvh.order) { unorderedMaterials[Int($0)] }
-      hierarchy = bvh
-      wideHierarchy = WideHierarchy(bvh, rayOrigin: rayOrigin)
+    if spheres.count >= projectionThreshold {
+      projectsSpheres = true
+    } else if spheres.count >= hierarchyThreshold {
+      buildSphereHierarchy()
     } else {
-      let model: BoundingVolumeHierarchy<Scalar>.ErrorModel =
-        Kernel.self == StableKernel<Scalar>.self ? .cancellationFree : .textbook
       for record in spheres {
-        let (center, radius) = Kernel.centerAndRadius(record)
-        let offset = center - rayOrigin
-        let reach = BoundingVolumeHierarchy<Scalar>.reach(
-          radius: radius.magnitude, distance: offset.length * (1 + 8 * Scalar.ulpOfOne),
-          model: model)
-        cullCenters.append(Vector3<Double>(offset))
-        cullRadii.append(Double(reach))
+        let (center, radius) = cullBound(record)
+        cullCenters.append(center)
+        cullRadii.append(radius)
       }
     }
     // Triangles are never culled per tile: their hierarchy starts at the
@@ -90,6 +89,39 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
         hierarchyThreshold, BoundingVolumeHierarchy<Scalar>.defaultThreshold))
   }
 
+  /// Builds the BVH over the spheres and stores them in its order: at
+  /// compile time above the hierarchy threshold, or when `ScreenTiles`
+  /// declines a scene whose spheres overlap too much on screen.
+  mutating func buildSphereHierarchy() {
+    let bvh = BoundingVolumeHierarchy(
+      spheres: spheres, kernel: Kernel.self, rayOrigin: rayOrigin)
+    let (unordered, unorderedMaterials) = (spheres, sphereMaterials)
+    spheres = Self.map(bvh.order) { unordered[Int($0)] }
+    sphereMaterials = Self.map(bvh.order) { unorderedMaterials[Int($0)] }
+    hierarchy = bvh
+    wideHierarchy = WideHierarchy(bvh, rayOrigin: rayOrigin)
+    projectsSpheres = false
+  }
+
+  /// A sphere's centre relative to the rays' origin and the distance from
+  /// it that any pixel's ray the kernel reports hitting the sphere comes
+  /// within: the hierarchy's reach, plus the rounding of the ray's own
+  /// direction (64 ε of the render's precision times the distance).
+  @inline(__always)
+  func cullBound(_ record: Kernel.SphereRecord) -> (center: Vector3<Double>, radius: Double) {
+    let model: BoundingVolumeHierarchy<Scalar>.ErrorModel =
+      Kernel.self == StableKernel<Scalar>.self ? .cancellationFree : .textbook
+    let (center, radius) = Kernel.centerAndRadius(record)
+    let offset = center - rayOrigin
+    let reach = Double(
+      BoundingVolumeHierarchy<Scalar>.reach(
+        radius: radius.magnitude, distance: offset.length * (1 + 8 * Scalar.ulpOfOne),
+        model: model))
+    let centre = Vector3<Double>(offset)
+    let slack = 64 * Double(Scalar.ulpOfOne)
+    return (centre, reach + slack * (centre.length + reach) + 1e-300)
+  }
+
   /// `transform` of each element in order, on two threads from 2¹⁶
   /// elements: the sphere records of the largest scenes.
   static func map<Element, Result>(
@@ -98,7 +130,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     let parts = elements.count >= 1 << 16 ? 2 : 1
     return Array(unsafeUninitializedCapacity: elements.count) { results, initialized in
       elements.withUnsafeBufferPointer { elements in
-        BoundingVolumeHierarchy<Scalar>.inParts(elements.count, parts) { _, range in
+        Parallel.inParts(elements.count, parts) { _, range in
           for index in range {
             (results.baseAddress! + index).initialize(to: transform(elements[index]))
           }
@@ -175,10 +207,9 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// through the pyramid from the rays' origin spanned by `corners` (unit
   /// directions in order around it) may hit, and returns their count.
   ///
-  /// A sphere is left out only when its reach lies wholly outside one of
-  /// the pyramid's faces by more than the rounding of any pixel's ray
-  /// (64 ε of the render's precision times the distance), so the nearest
-  /// hit of every ray in the tile is the same as testing every sphere.
+  /// A sphere is left out only when its `cullBound` lies wholly outside
+  /// one of the pyramid's faces, so the nearest hit of every ray in the
+  /// tile is the same as testing every sphere.
   func cullSpheres(
     corners: (Vector3<Double>, Vector3<Double>, Vector3<Double>, Vector3<Double>),
     into candidates: UnsafeMutableBufferPointer<Int32>
@@ -198,12 +229,10 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       face(corners.2, corners.3), face(corners.3, corners.0)
     )
     // A degenerate edge's face is zero, which excludes nothing.
-    let slack = 64 * Double(Scalar.ulpOfOne)
     var count = 0
     for sphere in cullCenters.indices {
       let center = cullCenters[sphere]
-      let radius = cullRadii[sphere]
-      let margin = radius + slack * (center.length + radius) + 1e-300
+      let margin = cullRadii[sphere]
       let outside =
         faces.0.dot(center) < -margin || faces.1.dot(center) < -margin
         || faces.2.dot(center) < -margin || faces.3.dot(center) < -margin
@@ -224,8 +253,12 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// they cross near 1,300.
   public static var tileCulledThreshold: Int { 1300 }
 
+  /// The sphere count from which single-sample renders project spheres
+  /// onto screen tiles (`ScreenTiles`) rather than build a hierarchy.
+  public static var projectionThreshold: Int { 1300 }
+
   /// Whether per-tile culling applies: spheres without a hierarchy.
-  var cullsPerTile: Bool { hierarchy == nil && spheres.count > 1 }
+  var cullsPerTile: Bool { hierarchy == nil && !projectsSpheres && spheres.count > 1 }
 
   public var triangleCount: Int { triangles.count }
   public var ellipsoidCount: Int { ellipsoids.count }
@@ -275,6 +308,17 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
         }
       }
     }
+    return nearest(ray, beyondSpheres: tBest, best)
+  }
+
+  /// The search of `nearest` after the spheres, whose nearest hit (or
+  /// infinity and nil) it starts from: planes, triangles, ellipsoids.
+  @inline(__always)
+  func nearest(
+    _ ray: CameraRay<Scalar>, beyondSpheres sphereT: Scalar, _ sphere: Nearest?
+  ) -> (t: Scalar, what: Nearest)? {
+    var tBest = sphereT
+    var best = sphere
     for index in planes.indices {
       if let t = Kernel.intersect(planes[index], ray, before: tBest) {
         tBest = t

@@ -28,6 +28,9 @@ public struct RenderReport: Sendable {
   public var spheres: Int
   public var planes: Int
   public var usesHierarchy: Bool
+  /// How each pixel's nearest sphere was found, in words for `--stats`:
+  /// "BVH", "screen tiles", "culling per tile" or "testing each".
+  public var sphereSearch = "testing each"
   public var triangles: Int = 0
   public var ellipsoids: Int = 0
   public var usesTriangleHierarchy = false
@@ -90,9 +93,12 @@ public enum RenderJob {
       hierarchyThreshold: settings.hierarchyThreshold
         ?? (settings.samples == 1
           ? CompiledScene<Kernel>.tileCulledThreshold
-          : BoundingVolumeHierarchy<Kernel.Scalar>.defaultThreshold))
+          : BoundingVolumeHierarchy<Kernel.Scalar>.defaultThreshold),
+      projectionThreshold: settings.samples == 1
+        ? settings.projectionThreshold ?? CompiledScene<Kernel>.projectionThreshold : .max)
     let compileSeconds = clock.lap()
-    let buffers = Renderer.render(compiled, settings: settings, progress: progress)
+    let (buffers, search) = Renderer.renderReportingSearch(
+      compiled, settings: settings, progress: progress)
     let renderSeconds = clock.lap()
     let usedRange =
       files.contains { $0.kind == .depth && $0.format.isEightBit }
@@ -118,8 +124,9 @@ public enum RenderJob {
     try AtomicFile.writeAll(encoded)
     var report = RenderReport(
       settings: settings, spheres: compiled.sphereCount, planes: compiled.planeCount,
-      usesHierarchy: compiled.usesHierarchy, compileSeconds: compileSeconds,
+      usesHierarchy: search == .hierarchy, compileSeconds: compileSeconds,
       renderSeconds: renderSeconds, writeSeconds: clock.lap(), depthRange: usedRange)
+    report.sphereSearch = search.description
     report.triangles = compiled.triangleCount
     report.ellipsoids = compiled.ellipsoidCount
     report.usesTriangleHierarchy = compiled.usesTriangleHierarchy

@@ -18,8 +18,45 @@ public enum Renderer {
     _ scene: CompiledScene<Kernel>, settings: RenderSettings,
     progress: (@Sendable (Int) -> Void)? = nil
   ) -> RenderBuffers<Kernel.Scalar> {
-    render(
-      scene, settings: settings, rays: Kernel.Scalar.self, progress: progress)
+    renderReportingSearch(scene, settings: settings, progress: progress).buffers
+  }
+
+  /// How a render found each pixel's nearest sphere.
+  enum SphereSearch: Sendable, Equatable, CustomStringConvertible {
+    case everySphere, culledPerTile, hierarchy, screenTiles
+
+    var description: String {
+      switch self {
+      case .everySphere: "testing each"
+      case .culledPerTile: "culling per tile"
+      case .hierarchy: "BVH"
+      case .screenTiles: "screen tiles"
+      }
+    }
+  }
+
+  /// `render`, and how it searched the spheres: a scene compiled for
+  /// projection is projected onto screen tiles, or given its hierarchy
+  /// when `ScreenTiles` declines it.
+  static func renderReportingSearch<Kernel: IntersectionKernel>(
+    _ scene: CompiledScene<Kernel>, settings: RenderSettings,
+    overlapLimit: Int = ScreenTiles.overlapLimit,
+    progress: (@Sendable (Int) -> Void)? = nil
+  ) -> (buffers: RenderBuffers<Kernel.Scalar>, search: SphereSearch) {
+    var scene = scene
+    var tiles: ScreenTiles?
+    if scene.projectsSpheres && settings.samples == 1 {
+      let camera = PerspectiveCamera<Kernel.Scalar>(scene.camera).styled(settings.style)
+      tiles = ScreenTiles(scene, camera: camera, settings: settings, overlapLimit: overlapLimit)
+    }
+    if scene.projectsSpheres && tiles == nil { scene.buildSphereHierarchy() }
+    let buffers = render(
+      scene, settings: settings, rays: Kernel.Scalar.self, tiles: tiles, progress: progress)
+    let search: SphereSearch =
+      tiles != nil ? .screenTiles
+      : scene.usesHierarchy ? .hierarchy
+      : scene.cullsPerTile && settings.samples == 1 ? .culledPerTile : .everySphere
+    return (buffers, search)
   }
 
   /// Renders with camera rays generated in precision `RayPrecision` and then
@@ -28,6 +65,14 @@ public enum Renderer {
   public static func render<Kernel: IntersectionKernel, RayPrecision: RayScalar>(
     _ scene: CompiledScene<Kernel>, settings: RenderSettings,
     rays: RayPrecision.Type, progress: (@Sendable (Int) -> Void)? = nil
+  ) -> RenderBuffers<Kernel.Scalar> {
+    render(scene, settings: settings, rays: rays, tiles: nil, progress: progress)
+  }
+
+  /// `tiles`, when given, must come from this scene, camera and settings.
+  private static func render<Kernel: IntersectionKernel, RayPrecision: RayScalar>(
+    _ scene: CompiledScene<Kernel>, settings: RenderSettings,
+    rays: RayPrecision.Type, tiles: ScreenTiles?, progress: (@Sendable (Int) -> Void)?
   ) -> RenderBuffers<Kernel.Scalar> {
     typealias S = Kernel.Scalar
     let width = settings.width
@@ -55,11 +100,11 @@ public enum Renderer {
             settings.style.screenX(column: column, width: width)
           }
           columns.withUnsafeBufferPointer { buffer in
-            let columns = SharedColumns(buffer: buffer)
+            let columns = Shared(buffer)
             forEachRowBatch(
               rows: height, threads: settings.threads, progress: progress
             ) { rows in
-              renderRows(rows, columns.buffer, scene, camera, settings, targets)
+              renderRows(rows, columns.value, scene, camera, settings, tiles, targets)
             }
           }
         }
@@ -92,11 +137,6 @@ public enum Renderer {
     #endif
   }
 
-  /// Read by every worker, written by none.
-  private struct SharedColumns<R>: @unchecked Sendable {
-    let buffer: UnsafeBufferPointer<R>
-  }
-
   /// Disjoint rows of these buffers are written by different threads.
   private struct Targets<S: RayScalar>: @unchecked Sendable {
     let depth: UnsafeMutableBufferPointer<S>
@@ -112,9 +152,18 @@ public enum Renderer {
   /// tile: each tile tests only the spheres its rays may hit.
   private static func renderRows<Kernel: IntersectionKernel, R: RayScalar>(
     _ rows: Range<Int>, _ columns: UnsafeBufferPointer<R>, _ scene: CompiledScene<Kernel>,
-    _ camera: PerspectiveCamera<R>, _ settings: RenderSettings,
+    _ camera: PerspectiveCamera<R>, _ settings: RenderSettings, _ tiles: ScreenTiles?,
     _ targets: Targets<Kernel.Scalar>
   ) {
+    if let tiles {
+      for start in stride(from: 0, to: settings.width, by: tileWidth) {
+        renderProjectedTile(
+          tiles.entries(ofTileAt: start, row: rows.lowerBound),
+          columns: start..<min(start + tileWidth, settings.width), rows: rows,
+          columns, scene, camera, settings, targets)
+      }
+      return
+    }
     // Supersampled rays leave the pixel centres' frusta: no culling then.
     guard scene.cullsPerTile && settings.samples == 1 else {
       // Tile by tile all the same: neighbouring rays visit the same nodes
@@ -161,10 +210,7 @@ public enum Renderer {
     let aspect = R(settings.height) / R(width)
     let y: R = style.screenY(row: row, height: settings.height)
     let rowBase = camera.rowBase(y: y, aspect: aspect)
-    let wantsDepth = targets.depth.count > 0
-    let wantsNormals = targets.normals.count > 0
     let wantsColor = targets.color.count > 0
-    let attenuate = style == .mit
     // The tile's directions first, in a loop without calls, so that the
     // processor overlaps one pixel's square root and division with the
     // next one's instead of waiting on each behind a traversal. At most
@@ -183,22 +229,95 @@ public enum Renderer {
           targets.color[pixel] = supersampledColor(
             column: column, row: row, scene: scene, camera: camera, settings: settings)
         }
-        let shadeCentre = wantsColor && settings.samples == 1
-        guard let hit = scene.nearest(ray, candidates: candidates) else {
-          if wantsDepth { targets.depth[pixel] = .infinity }
-          if wantsNormals { targets.normals[pixel] = .zero }
-          if shadeCentre { targets.color[pixel] = scene.background }
-          continue
-        }
-        if wantsDepth { targets.depth[pixel] = hit.t }
-        guard wantsNormals || shadeCentre else { continue }
-        let normal = scene.normal(of: hit.what, ray, t: hit.t)
-        if wantsNormals { targets.normals[pixel] = normal }
-        if shadeCentre {
-          targets.color[pixel] = shade(
-            hit, ray: ray, normal: normal, scene: scene, attenuate: attenuate)
+        let hit = scene.nearest(ray, candidates: candidates)
+        store(hit, ray: ray, pixel: pixel, scene: scene, settings: settings, targets: targets)
+      }
+    }
+  }
+
+  /// Renders one tile of `ScreenTiles`: each sphere tested only against the
+  /// rays of its box's pixels, in scene order with the flat loop's strict
+  /// `<`, then each pixel's search continued past the spheres.
+  private static func renderProjectedTile<Kernel: IntersectionKernel, R: RayScalar>(
+    _ entries: ArraySlice<ScreenTiles.Entry>, columns tileColumns: Range<Int>, rows: Range<Int>,
+    _ columns: UnsafeBufferPointer<R>, _ scene: CompiledScene<Kernel>,
+    _ camera: PerspectiveCamera<R>, _ settings: RenderSettings,
+    _ targets: Targets<Kernel.Scalar>
+  ) {
+    typealias S = Kernel.Scalar
+    let aspect = R(settings.height) / R(settings.width)
+    let capacity = ScreenTiles.tileWidth * ScreenTiles.tileHeight
+    precondition(tileColumns.count <= ScreenTiles.tileWidth && rows.count <= ScreenTiles.tileHeight)
+    withUnsafeTemporaryAllocation(of: CameraRay<S>.self, capacity: capacity) { rays in
+      withUnsafeTemporaryAllocation(of: S.self, capacity: capacity) { nearestT in
+        withUnsafeTemporaryAllocation(of: Int32.self, capacity: capacity) { nearestSphere in
+          for row in rows {
+            let y: R = settings.style.screenY(row: row, height: settings.height)
+            let rowBase = camera.rowBase(y: y, aspect: aspect)
+            for column in tileColumns {
+              let slot = (row - rows.lowerBound) * ScreenTiles.tileWidth + column - tileColumns.lowerBound
+              (rays.baseAddress! + slot).initialize(
+                to: CameraRay(
+                  origin: scene.rayOrigin,
+                  direction: Vector3<S>(camera.rayDirection(x: columns[column], rowBase: rowBase))))
+              (nearestT.baseAddress! + slot).initialize(to: .infinity)
+              (nearestSphere.baseAddress! + slot).initialize(to: -1)
+            }
+          }
+          scene.spheres.withUnsafeBufferPointer { records in
+            for entry in entries {
+              let record = records[Int(entry.sphere)]
+              for row in Int(entry.firstRow)...Int(entry.lastRow) {
+                for column in Int(entry.firstColumn)...Int(entry.lastColumn) {
+                  let slot = row * ScreenTiles.tileWidth + column
+                  if let t = Kernel.intersect(record, rays[slot], before: nearestT[slot]) {
+                    nearestT[slot] = t
+                    nearestSphere[slot] = entry.sphere
+                  }
+                }
+              }
+            }
+          }
+          for row in rows {
+            for column in tileColumns {
+              let slot = (row - rows.lowerBound) * ScreenTiles.tileWidth + column - tileColumns.lowerBound
+              let sphere = nearestSphere[slot]
+              let hit = scene.nearest(
+                rays[slot], beyondSpheres: nearestT[slot],
+                sphere >= 0 ? .sphere(Int(sphere)) : nil)
+              store(
+                hit, ray: rays[slot], pixel: row * settings.width + column, scene: scene,
+                settings: settings, targets: targets)
+            }
+          }
         }
       }
+    }
+  }
+
+  /// Writes a pixel's requested outputs from its nearest hit (nil: none).
+  @inline(__always)
+  private static func store<Kernel: IntersectionKernel>(
+    _ hit: (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest)?,
+    ray: CameraRay<Kernel.Scalar>, pixel: Int, scene: CompiledScene<Kernel>,
+    settings: RenderSettings, targets: Targets<Kernel.Scalar>
+  ) {
+    let wantsDepth = targets.depth.count > 0
+    let wantsNormals = targets.normals.count > 0
+    let shadeCentre = targets.color.count > 0 && settings.samples == 1
+    guard let hit else {
+      if wantsDepth { targets.depth[pixel] = .infinity }
+      if wantsNormals { targets.normals[pixel] = .zero }
+      if shadeCentre { targets.color[pixel] = scene.background }
+      return
+    }
+    if wantsDepth { targets.depth[pixel] = hit.t }
+    guard wantsNormals || shadeCentre else { return }
+    let normal = scene.normal(of: hit.what, ray, t: hit.t)
+    if wantsNormals { targets.normals[pixel] = normal }
+    if shadeCentre {
+      targets.color[pixel] = shade(
+        hit, ray: ray, normal: normal, scene: scene, attenuate: settings.style == .mit)
     }
   }
 
