@@ -40,11 +40,11 @@ public enum Renderer {
   /// when `ScreenTiles` declines it.
   static func renderReportingSearch<Kernel: IntersectionKernel>(
     _ scene: CompiledScene<Kernel>, settings: RenderSettings,
-    overlapLimit: Int = ScreenTiles.overlapLimit,
+    overlapLimit: Int = ScreenTiles<Kernel>.overlapLimit,
     progress: (@Sendable (Int) -> Void)? = nil
   ) -> (buffers: RenderBuffers<Kernel.Scalar>, search: SphereSearch) {
     var scene = scene
-    var tiles: ScreenTiles?
+    var tiles: ScreenTiles<Kernel>?
     if scene.projectsSpheres && settings.samples == 1 {
       let camera = PerspectiveCamera<Kernel.Scalar>(scene.camera).styled(settings.style)
       tiles = ScreenTiles(scene, camera: camera, settings: settings, overlapLimit: overlapLimit)
@@ -72,7 +72,7 @@ public enum Renderer {
   /// `tiles`, when given, must come from this scene, camera and settings.
   private static func render<Kernel: IntersectionKernel, RayPrecision: RayScalar>(
     _ scene: CompiledScene<Kernel>, settings: RenderSettings,
-    rays: RayPrecision.Type, tiles: ScreenTiles?, progress: (@Sendable (Int) -> Void)?
+    rays: RayPrecision.Type, tiles: ScreenTiles<Kernel>?, progress: (@Sendable (Int) -> Void)?
   ) -> RenderBuffers<Kernel.Scalar> {
     typealias S = Kernel.Scalar
     let width = settings.width
@@ -152,14 +152,15 @@ public enum Renderer {
   /// tile: each tile tests only the spheres its rays may hit.
   private static func renderRows<Kernel: IntersectionKernel, R: RayScalar>(
     _ rows: Range<Int>, _ columns: UnsafeBufferPointer<R>, _ scene: CompiledScene<Kernel>,
-    _ camera: PerspectiveCamera<R>, _ settings: RenderSettings, _ tiles: ScreenTiles?,
+    _ camera: PerspectiveCamera<R>, _ settings: RenderSettings, _ tiles: ScreenTiles<Kernel>?,
     _ targets: Targets<Kernel.Scalar>
   ) {
     if let tiles {
-      for start in stride(from: 0, to: settings.width, by: tileWidth) {
+      let width = ScreenTiles<Kernel>.tileWidth
+      for start in stride(from: 0, to: settings.width, by: width) {
         renderProjectedTile(
           tiles.entries(ofTileAt: start, row: rows.lowerBound),
-          columns: start..<min(start + tileWidth, settings.width), rows: rows,
+          columns: start..<min(start + width, settings.width), rows: rows,
           columns, scene, camera, settings, targets)
       }
       return
@@ -239,55 +240,57 @@ public enum Renderer {
   /// rays of its box's pixels, in scene order with the flat loop's strict
   /// `<`, then each pixel's search continued past the spheres.
   private static func renderProjectedTile<Kernel: IntersectionKernel, R: RayScalar>(
-    _ entries: ArraySlice<ScreenTiles.Entry>, columns tileColumns: Range<Int>, rows: Range<Int>,
+    _ entries: ArraySlice<ScreenTiles<Kernel>.Entry>, columns tileColumns: Range<Int>, rows: Range<Int>,
     _ columns: UnsafeBufferPointer<R>, _ scene: CompiledScene<Kernel>,
     _ camera: PerspectiveCamera<R>, _ settings: RenderSettings,
     _ targets: Targets<Kernel.Scalar>
   ) {
     typealias S = Kernel.Scalar
     let aspect = R(settings.height) / R(settings.width)
-    let capacity = ScreenTiles.tileWidth * ScreenTiles.tileHeight
-    precondition(tileColumns.count <= ScreenTiles.tileWidth && rows.count <= ScreenTiles.tileHeight)
+    let capacity = ScreenTiles<Kernel>.tileWidth * ScreenTiles<Kernel>.tileHeight
+    precondition(tileColumns.count <= ScreenTiles<Kernel>.tileWidth && rows.count <= ScreenTiles<Kernel>.tileHeight)
     withUnsafeTemporaryAllocation(of: CameraRay<S>.self, capacity: capacity) { rays in
       withUnsafeTemporaryAllocation(of: S.self, capacity: capacity) { nearestT in
-        withUnsafeTemporaryAllocation(of: Int32.self, capacity: capacity) { nearestSphere in
+        withUnsafeTemporaryAllocation(of: Int32.self, capacity: capacity) { nearestEntry in
           for row in rows {
             let y: R = settings.style.screenY(row: row, height: settings.height)
             let rowBase = camera.rowBase(y: y, aspect: aspect)
             for column in tileColumns {
-              let slot = (row - rows.lowerBound) * ScreenTiles.tileWidth + column - tileColumns.lowerBound
+              let slot = (row - rows.lowerBound) * ScreenTiles<Kernel>.tileWidth + column - tileColumns.lowerBound
               (rays.baseAddress! + slot).initialize(
                 to: CameraRay(
                   origin: scene.rayOrigin,
                   direction: Vector3<S>(camera.rayDirection(x: columns[column], rowBase: rowBase))))
               (nearestT.baseAddress! + slot).initialize(to: .infinity)
-              (nearestSphere.baseAddress! + slot).initialize(to: -1)
+              (nearestEntry.baseAddress! + slot).initialize(to: -1)
             }
           }
-          scene.spheres.withUnsafeBufferPointer { records in
-            for entry in entries {
-              let record = records[Int(entry.sphere)]
-              for row in Int(entry.firstRow)...Int(entry.lastRow) {
-                for column in Int(entry.firstColumn)...Int(entry.lastColumn) {
-                  let slot = row * ScreenTiles.tileWidth + column
-                  if let t = Kernel.intersect(record, rays[slot], before: nearestT[slot]) {
-                    nearestT[slot] = t
-                    nearestSphere[slot] = entry.sphere
-                  }
+          // The nearest entry rather than sphere: its copy of the record is
+          // in cache for the normal, the scene's is not.
+          let entryBase = entries.startIndex
+          for position in entries.indices {
+            let entry = entries[position]
+            let record = entry.record
+            for row in Int(entry.firstRow)...Int(entry.lastRow) {
+              for column in Int(entry.firstColumn)...Int(entry.lastColumn) {
+                let slot = row * ScreenTiles<Kernel>.tileWidth + column
+                if let t = Kernel.intersect(record, rays[slot], before: nearestT[slot]) {
+                  nearestT[slot] = t
+                  nearestEntry[slot] = Int32(truncatingIfNeeded: position - entryBase)
                 }
               }
             }
           }
           for row in rows {
             for column in tileColumns {
-              let slot = (row - rows.lowerBound) * ScreenTiles.tileWidth + column - tileColumns.lowerBound
-              let sphere = nearestSphere[slot]
+              let slot = (row - rows.lowerBound) * ScreenTiles<Kernel>.tileWidth + column - tileColumns.lowerBound
+              let position = Int(nearestEntry[slot])
+              let entry = position >= 0 ? entries[entryBase + position] : nil
               let hit = scene.nearest(
-                rays[slot], beyondSpheres: nearestT[slot],
-                sphere >= 0 ? .sphere(Int(sphere)) : nil)
+                rays[slot], beyondSpheres: nearestT[slot], entry.map { .sphere(Int($0.sphere)) })
               store(
                 hit, ray: rays[slot], pixel: row * settings.width + column, scene: scene,
-                settings: settings, targets: targets)
+                settings: settings, targets: targets, sphereRecord: entry?.record)
             }
           }
         }
@@ -296,11 +299,14 @@ public enum Renderer {
   }
 
   /// Writes a pixel's requested outputs from its nearest hit (nil: none).
+  /// `sphereRecord`, when given, is a copy of the record of the sphere the
+  /// search found, for the normal if that sphere is still the nearest.
   @inline(__always)
   private static func store<Kernel: IntersectionKernel>(
     _ hit: (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest)?,
     ray: CameraRay<Kernel.Scalar>, pixel: Int, scene: CompiledScene<Kernel>,
-    settings: RenderSettings, targets: Targets<Kernel.Scalar>
+    settings: RenderSettings, targets: Targets<Kernel.Scalar>,
+    sphereRecord: Kernel.SphereRecord? = nil
   ) {
     let wantsDepth = targets.depth.count > 0
     let wantsNormals = targets.normals.count > 0
@@ -313,7 +319,12 @@ public enum Renderer {
     }
     if wantsDepth { targets.depth[pixel] = hit.t }
     guard wantsNormals || shadeCentre else { return }
-    let normal = scene.normal(of: hit.what, ray, t: hit.t)
+    let normal: Vector3<Kernel.Scalar>
+    if case .sphere = hit.what, let sphereRecord {
+      normal = Kernel.normal(sphereRecord, ray, t: hit.t)
+    } else {
+      normal = scene.normal(of: hit.what, ray, t: hit.t)
+    }
     if wantsNormals { targets.normals[pixel] = normal }
     if shadeCentre {
       targets.color[pixel] = shade(

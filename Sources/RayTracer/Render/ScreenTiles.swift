@@ -7,26 +7,38 @@
 /// the eye only along directions whose screen point lies inside an ellipse,
 /// and that ellipse's bounding box has a closed form (see `screenInterval`).
 /// Each sphere's box, in pixels and widened for every rounding on the way,
-/// is recorded in the 16×4-pixel tiles it touches, in scene order, so the
+/// is recorded in the 256×4-pixel tiles it touches, in scene order, so the
 /// render tests each pixel's ray against only the spheres whose boxes hold
 /// it, with the flat loop's strict `<`: the nearest hit, ties included, is
 /// the one testing every sphere finds.
+///
+/// Each entry carries a copy of its sphere's record: the tiles list the
+/// spheres in an order unrelated to the scene's, and reading records
+/// through indices was one cache miss per entry, half the render of a
+/// million spheres.
 ///
 /// The work is the sum of the boxes' areas: one box per sphere, a few
 /// pixels each for a million small spheres, where a hierarchy's walk per
 /// ray grows with the scene's depth. Where spheres overlap heavily on
 /// screen (big spheres one behind another) that sum outgrows the image and
 /// a hierarchy is cheaper: `init` declines then.
-struct ScreenTiles: Sendable {
-  static let tileWidth = Renderer.tileWidth
-  static let tileHeight = Renderer.rowsPerBatch
+struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
+  /// Tiles a batch of rows high and 256 pixels wide: a tile's rays (64 KiB
+  /// in Double) stay in the level-2 cache while its spheres are tested,
+  /// and sorting entries into a few thousand tiles writes each tile's
+  /// list through a cache line that stays resident. With 16-pixel tiles
+  /// (32,400 at 1920×1080) every entry written and every record read
+  /// missed the cache.
+  static var tileWidth: Int { 256 }
+  static var tileHeight: Int { Renderer.rowsPerBatch }
 
   /// A sphere's pixels within one tile: columns and rows relative to the
   /// tile's corner, both ends included.
   struct Entry: Sendable {
+    var record: Kernel.SphereRecord
     var sphere: Int32
-    var firstColumn: UInt8
-    var lastColumn: UInt8
+    var firstColumn: UInt16
+    var lastColumn: UInt16
     var firstRow: UInt8
     var lastRow: UInt8
   }
@@ -42,7 +54,7 @@ struct ScreenTiles: Sendable {
   /// Where a hierarchy wins: boxes summing to more than this many times
   /// the image's pixels. Measured at 1920×1080, depth and normals (see
   /// `CompiledScene.projectionThreshold` for the measurement).
-  static let overlapLimit = 24
+  static var overlapLimit: Int { 24 }
 
   func entries(ofTileAt column: Int, row: Int) -> ArraySlice<Entry> {
     let tile = (row / Self.tileHeight) * tilesAcross + column / Self.tileWidth
@@ -53,7 +65,7 @@ struct ScreenTiles: Sendable {
   ///
   /// - Parameter camera: the camera the render builds its rays with
   ///   (`styled`), in the precision of the render's rays.
-  init?<Kernel: IntersectionKernel>(
+  init?(
     _ scene: CompiledScene<Kernel>, camera: PerspectiveCamera<Kernel.Scalar>,
     settings: RenderSettings, overlapLimit: Int = Self.overlapLimit
   ) {
@@ -121,12 +133,14 @@ struct ScreenTiles: Sendable {
     entries = Array(unsafeUninitializedCapacity: total) { entries, initialized in
       let shared = Shared((entries, cursors))
       boxes.withUnsafeBufferPointer { boxes in
-        let boxes = Shared(boxes)
+        scene.spheres.withUnsafeBufferPointer { records in
+        let boxesAndRecords = Shared((boxes, records))
         Parallel.inParts(count, parts) { part, range in
           let (entries, cursors) = shared.value
+          let (boxes, records) = boxesAndRecords.value
           var cursor = cursors[part]
           for index in range {
-            let box = boxes.value[index]
+            let box = boxes[index]
             guard !box.isEmpty else { continue }
             let (columns, rows) = (box.columns, box.rows)
             for tileRow in rows.lowerBound / tileHeight...rows.upperBound / tileHeight {
@@ -140,14 +154,15 @@ struct ScreenTiles: Sendable {
                 let tile = tileRow * tilesAcross + tileColumn
                 (entries.baseAddress! + cursor[tile]).initialize(
                   to: Entry(
-                    sphere: Int32(truncatingIfNeeded: index),
-                    firstColumn: UInt8(Swift.max(columns.lowerBound, left) - left),
-                    lastColumn: UInt8(Swift.min(columns.upperBound, left + tileWidth - 1) - left),
+                    record: records[index], sphere: Int32(truncatingIfNeeded: index),
+                    firstColumn: UInt16(Swift.max(columns.lowerBound, left) - left),
+                    lastColumn: UInt16(Swift.min(columns.upperBound, left + tileWidth - 1) - left),
                     firstRow: rowsInTile.0, lastRow: rowsInTile.1))
                 cursor[tile] += 1
               }
             }
           }
+        }
         }
       }
       initialized = total
@@ -179,6 +194,11 @@ struct ScreenProjection: Sendable {
   let r1: Vector3<Double>
   let r2: Vector3<Double>
   let r3: Vector3<Double>
+  /// Per camera rather than per sphere: |r₃|, |r₃|², and for each screen
+  /// axis |rᵢ|, rᵢ·r₃ and |rᵢ × r₃|².
+  let r3Length: Double
+  let r3LengthSquared: Double
+  let axes: (x: Axis, y: Axis)
   /// A bound on how much the computed rows and products can err, relative
   /// to their sizes: max|column of M|·max|rᵢ| ε-units become this slack.
   let condition: Double
@@ -186,6 +206,13 @@ struct ScreenProjection: Sendable {
   let height: Int
   let style: ImageStyle
   let whole: PixelBox
+
+  struct Axis: Sendable {
+    let row: Vector3<Double>
+    let length: Double
+    let dotR3: Double
+    let crossR3Squared: Double
+  }
 
   init(camera: PerspectiveCamera<Double>, width: Int, height: Int, style: ImageStyle) {
     let aspect = Double(height) / Double(width)
@@ -196,6 +223,15 @@ struct ScreenProjection: Sendable {
     r3 = u.cross(v) / determinant
     condition =
       Swift.max(u.length, v.length, w.length) * Swift.max(r1.length, r2.length, r3.length)
+    r3Length = r3.length
+    r3LengthSquared = r3.lengthSquared
+    let (r3, r1, r2) = (r3, r1, r2)
+    func axis(_ row: Vector3<Double>) -> Axis {
+      Axis(
+        row: row, length: row.length, dotR3: row.dot(r3),
+        crossR3Squared: row.cross(r3).lengthSquared)
+    }
+    axes = (axis(r1), axis(r2))
     self.width = width
     self.height = height
     self.style = style
@@ -209,15 +245,15 @@ struct ScreenProjection: Sendable {
   /// silhouette has no bounded box, or when anything is not finite.
   func pixelBox(center p: Vector3<Double>, reach ρ: Double) -> PixelBox {
     let p3 = r3.dot(p)
-    let n3 = r3.length
+    let n3 = r3Length
     // A hit point h = t·d has r₃·h > 0 and |h − p| ≤ ρ, so r₃·p > −ρ|r₃|.
     if p3 <= -ρ * n3 * (1 + 0x1p-20) { return .empty }
     // With r₃·p ≥ 2ρ|r₃| the ball is at most 30° wide seen from that
     // plane, A below stays within [3/4, 1]·(r₃·p)², and every quantity is
     // a sum of terms of known size (`Λ`).
     guard p3 >= 2 * ρ * n3, p3.isFinite, ρ.isFinite, p.isFinite else { return whole }
-    guard let x = screenInterval(row: r1, p, p3, ρ),
-      let y = screenInterval(row: r2, p, p3, ρ)
+    guard let x = screenInterval(axes.x, p, p3, ρ),
+      let y = screenInterval(axes.y, p, p3, ρ)
     else { return whole }
     // The pixels whose own screen coordinates lie in the intervals. Those
     // were rounded in the render's precision (`screenX`: a division and a
@@ -256,22 +292,23 @@ struct ScreenProjection: Sendable {
   /// at most a few dozen ε of Double each, and A ≥ 3/4·P₃² bounds the
   /// division. The interval is widened by 2⁻³⁰·Λ·condition, about 2²²
   /// times that bound; on screen that is a few billionths of the image.
+  @inline(__always)
   private func screenInterval(
-    row ri: Vector3<Double>, _ p: Vector3<Double>, _ p3: Double, _ ρ: Double
+    _ axis: Axis, _ p: Vector3<Double>, _ p3: Double, _ ρ: Double
   ) -> (lower: Double, upper: Double)? {
+    let ri = axis.row
     let pi = ri.dot(p)
-    let a = p3 * p3 - ρ * ρ * r3.lengthSquared
-    let b = pi * p3 - ρ * ρ * ri.dot(r3)
+    let a = p3 * p3 - ρ * ρ * r3LengthSquared
+    let b = pi * p3 - ρ * ρ * axis.dotR3
     let tangent = ri * p3 - r3 * pi
-    let discriminant = Swift.max(0, tangent.lengthSquared - ρ * ρ * ri.cross(r3).lengthSquared)
+    let discriminant = Swift.max(0, tangent.lengthSquared - ρ * ρ * axis.crossR3Squared)
     let s = ρ * discriminant.squareRoot()
     let lower = (b - s) / a
     let upper = (b + s) / a
     // Λ: |Pᵢ|/P₃ is the centre's screen coordinate, |p|·|rᵢ|/P₃ bounds the
     // error of Pᵢ and P₃ in screen units, and ρ/P₃ times the rows the
     // ball's angular size.
-    let scale =
-      (pi.magnitude + p.length * (ri.length + r3.length) + ρ * (ri.length + r3.length)) / p3
+    let scale = (pi.magnitude + (p.length + ρ) * (axis.length + r3Length)) / p3
     let pad = 0x1p-30 * condition * (1 + scale + scale * scale)
     guard lower.isFinite, upper.isFinite, pad.isFinite else { return nil }
     return (lower - pad, upper + pad)

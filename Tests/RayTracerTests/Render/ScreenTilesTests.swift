@@ -257,7 +257,7 @@ final class ScreenTilesTests: XCTestCase {
     XCTAssertNil(ScreenTiles(compiled, camera: camera64, settings: settings))
     XCTAssertNotNil(ScreenTiles(compiled, camera: camera64, settings: settings, overlapLimit: 1000))
     let declined = render(
-      StableKernel<Double>.self, scene, settings, .screenTiles, overlapLimit: ScreenTiles.overlapLimit)
+      StableKernel<Double>.self, scene, settings, .screenTiles, overlapLimit: ScreenTiles<StableKernel<Double>>.overlapLimit)
     XCTAssertEqual(declined.search, .hierarchy)
     let tree = render(StableKernel<Double>.self, scene, settings, .hierarchy)
     XCTAssertEqual(differences(declined.buffers, tree.buffers), 0)
