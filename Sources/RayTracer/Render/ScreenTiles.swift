@@ -80,12 +80,12 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
     let parts = count >= 1 << 14 ? Swift.max(1, Swift.min(settings.threads, 2)) : 1
     // Pass one: each sphere's box, and per part how many entries each tile
     // gets from it, so that pass two writes every entry straight into place.
-    var boxes = [PixelBox](repeating: .empty, count: count)
     var tileCounts = [[Int32]](repeating: [], count: parts)
     var covered = [Int](repeating: 0, count: parts)
     let (tilesAcross, tileWidth, tileHeight) = (tilesAcross, Self.tileWidth, Self.tileHeight)
-    scene.spheres.withUnsafeBufferPointer { records in
-      boxes.withUnsafeMutableBufferPointer { boxes in
+    let boxes = [PixelBox](unsafeUninitializedCapacity: count) { boxes, initialized in
+      Renderer.adviseHugePages(UnsafeMutableRawBufferPointer(boxes))
+      scene.spheres.withUnsafeBufferPointer { records in
         let shared = Shared((records, boxes))
         let results = Shared(
           UnsafeMutableBufferPointer<([Int32], Int)>.allocate(capacity: parts))
@@ -97,7 +97,7 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
           for index in range {
             let (center, reach) = scene.cullBound(records[index])
             let box = projection.pixelBox(center: center, reach: reach)
-            boxes[index] = box
+            (boxes.baseAddress! + index).initialize(to: box)
             guard !box.isEmpty else { continue }
             area += box.area
             for tileRow in box.rows.lowerBound / tileHeight...box.rows.upperBound / tileHeight {
@@ -114,6 +114,7 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
         }
         results.value.baseAddress!.deinitialize(count: parts)
       }
+      initialized = count
     }
     coveredPixels = covered.reduce(0, +)
     guard Double(coveredPixels) <= Double(overlapLimit) * Double(width * height) else { return nil }
@@ -131,6 +132,7 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
     starts[tileCount] = total
     self.starts = starts
     entries = Array(unsafeUninitializedCapacity: total) { entries, initialized in
+      Renderer.adviseHugePages(UnsafeMutableRawBufferPointer(entries))
       let shared = Shared((entries, cursors))
       boxes.withUnsafeBufferPointer { boxes in
         scene.spheres.withUnsafeBufferPointer { records in
