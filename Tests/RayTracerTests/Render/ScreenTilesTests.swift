@@ -242,9 +242,10 @@ final class ScreenTilesTests: XCTestCase {
   /// Big spheres one behind the other cover the image many times over:
   /// the tiles decline, the render builds the hierarchy, same images.
   func testHeavyOverlap_DeclinesToTheHierarchy() {
+    // 64 spheres, each filling the view: 64 times the image.
     let spheres = (0..<64).map { index in
       SceneObject<Double>.sphere(
-        Sphere(center: Vector3(0, 0, -10 - 3 * Double(index)), radius: 1 + Double(index) / 2))
+        Sphere(center: Vector3(0, 0, -10 - 3 * Double(index)), radius: 5 + Double(index)))
     }
     guard
       let camera = PerspectiveCamera<Double>(
@@ -254,13 +255,16 @@ final class ScreenTilesTests: XCTestCase {
     let settings = RenderSettings(width: 40, height: 30, outputs: [.depth, .normals], threads: 2)
     let compiled = CompiledScene<StableKernel<Double>>(scene, projectionThreshold: 0)
     let camera64 = PerspectiveCamera<Double>(compiled.camera)
-    XCTAssertNil(ScreenTiles(compiled, camera: camera64, settings: settings))
-    XCTAssertNotNil(ScreenTiles(compiled, camera: camera64, settings: settings, overlapLimit: 1000))
-    let declined = render(
-      StableKernel<Double>.self, scene, settings, .screenTiles, overlapLimit: ScreenTiles<StableKernel<Double>>.overlapLimit)
-    XCTAssertEqual(declined.search, .hierarchy)
+    let declined = ScreenTiles(compiled, camera: camera64, settings: settings)
+    XCTAssertTrue(declined == nil, "covered \(declined?.coveredPixels ?? 0) of 1200 pixels")
+    let accepted = ScreenTiles(compiled, camera: camera64, settings: settings, overlapLimit: 1000)
+    XCTAssertEqual(accepted?.coveredPixels, 64 * 40 * 30)
+    let fallback = render(
+      StableKernel<Double>.self, scene, settings, .screenTiles,
+      overlapLimit: ScreenTiles<StableKernel<Double>>.overlapLimit)
+    XCTAssertEqual(fallback.search, .hierarchy)
     let tree = render(StableKernel<Double>.self, scene, settings, .hierarchy)
-    XCTAssertEqual(differences(declined.buffers, tree.buffers), 0)
+    XCTAssertEqual(differences(fallback.buffers, tree.buffers), 0)
   }
 
   /// From 2¹⁴ spheres two threads sort them into tiles, each half of the
