@@ -296,5 +296,9 @@ final class ScreenTilesTests: XCTestCase {
     XCTAssertGreaterThan(projected.buffers.color.filter { $0.x > 0 }.count, 100)
     let tree = render(StableKernel<Double>.self, scene, settings, .hierarchy)
     XCTAssertEqual(differences(projected.buffers, tree.buffers), 0)
+    var oneThread = settings
+    oneThread.threads = 1
+    let single = render(StableKernel<Double>.self, scene, oneThread, .screenTiles)
+    XCTAssertEqual(differences(projected.buffers, single.buffers), 0, "one thread against two")
   }
 }
