@@ -37,6 +37,7 @@ struct Bench: ParsableCommand {
       executable: currentExecutable(), dataFolder: data, runs: runs)
     print("| workload | size | objects | threads | outputs | render (ms) | Mrays/s | end to end (s) | peak memory (MiB) |")
     print("|---|---|---:|---:|---|---:|---:|---:|---:|")
+    var endToEnd: [Int: Double] = [:]
     for workload in Workload.standard {
       if quick && (workload.width * workload.height > 1920 * 1080 || workload.objectsDescription == "1000000") {
         continue
@@ -50,10 +51,21 @@ struct Bench: ParsableCommand {
             + "\(formatted(result.megaraysPerSecond, digits: 3)) | "
             + "\(formatted(result.endToEndSeconds, digits: 3)) | "
             + "\(formatted(Double(result.peakBytes) / 1_048_576, digits: 3)) |")
+        if case .randomSpheres(let count) = workload.source, workload.threads == nil,
+          workload.outputs == [.depth, .normals]
+        {
+          endToEnd[count] = result.endToEndSeconds
+        }
       } catch {
         printError("raytrace: error: \(error)")
         throw ExitCode.failure
       }
+    }
+    // The scaling goal, read off the rows above.
+    if let large = endToEnd[1_000_000], let small = endToEnd[10_000] {
+      print(
+        "\n10⁶ spheres end to end ÷ 10⁴ spheres end to end (depth + normals, all cores): "
+          + "\(formatted(large / small, digits: 3))×")
     }
   }
 
