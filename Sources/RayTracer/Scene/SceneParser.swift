@@ -54,6 +54,9 @@ public struct SceneParser {
   /// The material a `SphereRun` gives the spheres it reads.
   private var currentMaterial = 0
   private var splicedObjects = 0
+  /// Off only in tests, which compare the sphere reading of
+  /// `SceneTokenizer.plainSphere` with the token by token one.
+  var readsPlainSpheres = true
   private var concurrentFrom = (
     groupSize: SceneParser.concurrentGroupSize, bytes: SceneParser.concurrentBytes
   )
@@ -479,6 +482,7 @@ public struct SceneParser {
     var run = SphereRun(
       bytes: tokenizer.bytes, file: file, from: split,
       capacity: state.declared.value - state.objects.count)
+    run.parser.readsPlainSpheres = readsPlainSpheres
     var outcome: Result<GroupProgress, SceneError> = .success(.spliced)
     withUnsafeMutablePointer(to: &self) { parser in
       withUnsafeMutablePointer(to: &state) { state in
@@ -793,8 +797,18 @@ public struct SceneParser {
 
   /// The hot path of large scenes: keywords are compared as bytes, and
   /// nothing is allocated. The same checks and messages as `parseFields`
-  /// with `positive` for the radius.
+  /// with `positive` for the radius. The plain form, nearly every sphere
+  /// of a generated scene, is read in one pass first; whatever that pass
+  /// leaves, errors included, is read token by token.
   private mutating func parseSphere(material: Int) throws(SceneError) -> Sphere<Double> {
+    let start = tokenizer.position
+    if readsPlainSpheres, let (center, radius) = tokenizer.plainSphere() {
+      if radius > 0 {
+        return Sphere(center: center, radius: radius, materialIndex: material)
+      }
+      // The error at the radius comes from the reading below.
+      tokenizer.position = start
+    }
     try expect(.open, "'{' after Sphere")
     var center: Vector3<Double>?
     var radius: Double?

@@ -24,7 +24,7 @@ struct SceneTokenizer {
   }
 
   /// Where the next token is looked for: enough to resume there.
-  struct Position {
+  struct Position: Equatable {
     var index: Int
     var line: Int
     var lineStart: Int
@@ -82,13 +82,98 @@ struct SceneTokenizer {
     }
   }
 
-  private static func isBlank(_ byte: UInt8) -> Bool {
+  static func isBlank(_ byte: UInt8) -> Bool {
     byte == 0x20 || byte == 0x09 || byte == 0x0D || byte == 0x0B || byte == 0x0C
   }
 
-  private static func endsWord(_ byte: UInt8) -> Bool {
+  static func endsWord(_ byte: UInt8) -> Bool {
     isBlank(byte) || byte == UInt8(ascii: "\n") || byte == UInt8(ascii: "{")
       || byte == UInt8(ascii: "}") || byte == UInt8(ascii: "#")
+  }
+
+  /// The fields of a sphere as scene files write it, `{ center x y z
+  /// radius r }` after its keyword, read in one pass that converts each
+  /// number as it finds it; nil, with the position unchanged, for anything
+  /// else, which the parser then reads token by token.
+  ///
+  /// What is read here reads the same token by token: the same tokens
+  /// (blanks and line breaks between them; a `#` gives up), numbers only
+  /// where `DecimalParser`'s fast path converts the whole word, which
+  /// `number(_:)` converts with the same code, and no word longer than
+  /// the parser accepts. Only the result is left to the caller to check.
+  mutating func plainSphere() -> (center: Vector3<Double>, radius: Double)? {
+    bytes.withUnsafeBufferPointer { buffer in
+      guard let base = buffer.baseAddress else { return nil }
+      var cursor = Cursor(
+        at: base + index, end: base + buffer.count, line: line,
+        lineStart: base + lineStart)
+      guard cursor.symbol(UInt8(ascii: "{")), cursor.keyword("center"),
+        let x = cursor.number(), let y = cursor.number(),
+        let z = cursor.number(), cursor.keyword("radius"),
+        let radius = cursor.number(), cursor.symbol(UInt8(ascii: "}"))
+      else { return nil }
+      index = cursor.at - base
+      line = cursor.line
+      lineStart = cursor.lineStart - base
+      return (Vector3(x, y, z), radius)
+    }
+  }
+
+  /// Where `plainSphere` has read to: each read skips the blanks and line
+  /// breaks before its token, and tells whether the token is the one
+  /// expected.
+  private struct Cursor {
+    var at: UnsafePointer<UInt8>
+    let end: UnsafePointer<UInt8>
+    var line: Int
+    var lineStart: UnsafePointer<UInt8>
+
+    /// Whether a token starts before `end`; false at a comment, which
+    /// the tokenizer skips and this reading leaves to it.
+    mutating func skipBlanks() -> Bool {
+      while at < end {
+        let byte = at.pointee
+        if byte == UInt8(ascii: "\n") {
+          at += 1
+          line += 1
+          lineStart = at
+        } else if SceneTokenizer.isBlank(byte) {
+          at += 1
+        } else {
+          return byte != UInt8(ascii: "#")
+        }
+      }
+      return false
+    }
+
+    mutating func symbol(_ brace: UInt8) -> Bool {
+      guard skipBlanks(), at.pointee == brace else { return false }
+      at += 1
+      return true
+    }
+
+    mutating func keyword(_ word: StaticString) -> Bool {
+      let length = word.utf8CodeUnitCount
+      guard skipBlanks(), end - at > length,
+        SceneTokenizer.endsWord(at[length])
+      else { return false }
+      for offset in 0..<length where at[offset] != word.utf8Start[offset] {
+        return false
+      }
+      at += length
+      return true
+    }
+
+    mutating func number() -> Double? {
+      guard skipBlanks(),
+        case .fast(let value, let stop) = DecimalParser.prefix(
+          from: at, to: end),
+        stop < end, SceneTokenizer.endsWord(stop.pointee),
+        stop - at <= SceneParser.maximumWordLength
+      else { return nil }
+      at = stop
+      return value
+    }
   }
 
   /// The token's text, for messages and the rare slow paths.
