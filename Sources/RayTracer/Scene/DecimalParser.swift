@@ -69,7 +69,7 @@ enum DecimalParser {
     var exponent = 0
     while cursor < end, let digit = decimalDigit(cursor.pointee) {
       accumulate(digit, &mantissa, &significantDigits, &exponent, fraction: false)
-      digits += 1
+      digits &+= 1
       cursor += 1
     }
     if cursor < end && cursor.pointee == UInt8(ascii: ".") {
@@ -96,8 +96,8 @@ enum DecimalParser {
       while cursor < end, let digit = decimalDigit(cursor.pointee) {
         // Past 100,000 the value is 0 or infinite whatever the digits:
         // the slow path decides, and `written` cannot overflow.
-        if written < 100_000 { written = written * 10 + Int(digit) }
-        exponentDigits += 1
+        if written < 100_000 { written = written &* 10 &+ Int(digit) }
+        exponentDigits &+= 1
         cursor += 1
       }
       guard exponentDigits > 0 else { return .invalid }
@@ -118,8 +118,8 @@ enum DecimalParser {
   }
 
   private static func decimalDigit(_ byte: UInt8) -> UInt64? {
-    byte >= UInt8(ascii: "0") && byte <= UInt8(ascii: "9")
-      ? UInt64(byte - UInt8(ascii: "0")) : nil
+    let digit = byte &- UInt8(ascii: "0")
+    return digit < 10 ? UInt64(digit) : nil
   }
 
   /// Leading zeros are not significant; digits past the 19th only mark the
@@ -128,16 +128,18 @@ enum DecimalParser {
     _ digit: UInt64, _ mantissa: inout UInt64, _ significant: inout Int,
     _ exponent: inout Int, fraction: Bool
   ) {
+    // Wrapping arithmetic, as none of it can overflow: 19 digits are
+    // below 10^19 < 2^64, and the counts are bounded by the text's length.
     if mantissa == 0 && digit == 0 {
-      if fraction { exponent -= 1 }
+      if fraction { exponent &-= 1 }
       return
     }
-    significant += 1
+    significant &+= 1
     if significant <= 19 {
-      mantissa = mantissa * 10 + digit
-      if fraction { exponent -= 1 }
+      mantissa = mantissa &* 10 &+ digit
+      if fraction { exponent &-= 1 }
     } else if !fraction {
-      exponent += 1
+      exponent &+= 1
     }
   }
 
