@@ -89,19 +89,24 @@ public struct SceneParser {
 
   /// Reads and parses the file at `path`.
   public static func parse(contentsOf path: String) throws(SceneError) -> Scene {
-    let bytes: [UInt8]
+    let bytes: SceneBytes
     do {
-      bytes = try readFile(path)
+      bytes = try SceneBytes.contentsOf(path)
     } catch {
       throw SceneError(file: path, line: 0, column: 0, message: error.reason)
     }
-    return try parse(bytes: bytes, file: path)
+    var parser = SceneParser(bytes: bytes, file: path)
+    return try parser.parseScene()
   }
 
   init(bytes: [UInt8], file: String) {
+    self.init(bytes: SceneBytes(bytes), file: file)
+  }
+
+  init(bytes: SceneBytes, file: String) {
     tokenizer = SceneTokenizer(bytes: bytes)
     self.file = file
-    objectBudget = bytes.count / Self.minimumObjectLength
+    objectBudget = bytes.buffer.count / Self.minimumObjectLength
   }
 
   // MARK: - Blocks
@@ -480,7 +485,7 @@ public struct SceneParser {
     _ state: inout GroupState, from split: Int
   ) throws(SceneError) -> GroupProgress {
     var run = SphereRun(
-      bytes: tokenizer.bytes, file: file, from: split,
+      bytes: tokenizer.source, file: file, from: split,
       capacity: state.declared.value - state.objects.count)
     run.parser.readsPlainSpheres = readsPlainSpheres
     var outcome: Result<GroupProgress, SceneError> = .success(.spliced)
@@ -553,7 +558,7 @@ public struct SceneParser {
     /// Where the first token not read starts.
     var stop: SceneTokenizer.Position
 
-    init(bytes: [UInt8], file: String, from split: Int, capacity: Int) {
+    init(bytes: SceneBytes, file: String, from split: Int, capacity: Int) {
       parser = SceneParser(bytes: bytes, file: file)
       parser.tokenizer.position = SceneTokenizer.Position(
         index: split, line: 1, lineStart: split)
@@ -1165,6 +1170,15 @@ struct FileReadError: Error {
 /// /dev/zero, a FIFO or a directory named as a scene or a mesh would
 /// otherwise hang the program or exhaust its memory.
 func readFile(_ path: String) throws(FileReadError) -> [UInt8] {
+  let (descriptor, size) = try openRegularFile(path)
+  return try readOpenFile(descriptor, expected: size)
+}
+
+/// Opens `path` for reading if it is a regular file of at most
+/// `maximumFileSize` bytes: its descriptor, and its size as reported.
+func openRegularFile(
+  _ path: String
+) throws(FileReadError) -> (descriptor: Int32, size: Int) {
   // Non-blocking: opening a FIFO for reading would otherwise wait for a
   // writer, forever, before fstat below could refuse it. The flag changes
   // nothing for the regular files that are read.
@@ -1172,27 +1186,37 @@ func readFile(_ path: String) throws(FileReadError) -> [UInt8] {
   guard descriptor >= 0 else {
     throw FileReadError(reason: "cannot open the file: \(String(cString: strerror(errno)))")
   }
+  var status = stat()
+  guard fstat(descriptor, &status) == 0 else {
+    let reason = String(cString: strerror(errno))
+    close(descriptor)
+    throw FileReadError(reason: "cannot read the file: \(reason)")
+  }
+  guard (status.st_mode & S_IFMT) == S_IFREG else {
+    close(descriptor)
+    throw FileReadError(reason: "not a regular file")
+  }
+  guard Int(status.st_size) <= maximumFileSize else {
+    close(descriptor)
+    throw FileReadError(
+      reason: "the file is \(status.st_size) bytes; the limit is \(maximumFileSize)")
+  }
+  return (descriptor, Int(status.st_size))
+}
+
+/// Reads the file open at `descriptor` to its end, and closes it.
+func readOpenFile(
+  _ descriptor: Int32, expected: Int
+) throws(FileReadError) -> [UInt8] {
   guard let handle = fdopen(descriptor, "rb") else {
     let reason = String(cString: strerror(errno))
     close(descriptor)
     throw FileReadError(reason: "cannot open the file: \(reason)")
   }
   defer { fclose(handle) }
-  var status = stat()
-  guard fstat(fileno(handle), &status) == 0 else {
-    throw FileReadError(reason: "cannot read the file: \(String(cString: strerror(errno)))")
-  }
-  guard (status.st_mode & S_IFMT) == S_IFREG else {
-    throw FileReadError(reason: "not a regular file")
-  }
-  guard Int(status.st_size) <= maximumFileSize else {
-    throw FileReadError(
-      reason: "the file is \(status.st_size) bytes; the limit is \(maximumFileSize)")
-  }
   // Straight into the array when the size is right: a 72 MB scene was
   // otherwise copied once more, chunk by chunk. A file that grows while it
   // is read goes on in chunks.
-  let expected = Int(status.st_size)
   var failed = false
   var bytes = [UInt8](unsafeUninitializedCapacity: expected) { buffer, count in
     count = fread(buffer.baseAddress, 1, expected, handle)

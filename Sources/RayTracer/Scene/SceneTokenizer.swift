@@ -14,13 +14,22 @@ struct SceneToken {
 /// Tokens are separated by white space; `{` and `}` are tokens of their own
 /// even when they touch a word; `#` starts a comment to the end of the line.
 struct SceneTokenizer {
-  let bytes: [UInt8]
+  /// Owns `bytes`: a tokenizer, and each copy of it, keeps them alive.
+  let source: SceneBytes
+  /// Read without the bounds checks and the closure of an array's
+  /// `withUnsafeBufferPointer` on every token.
+  let bytes: UnsafeBufferPointer<UInt8>
   private var index = 0
   private var line = 1
   private var lineStart = 0
 
+  init(bytes: SceneBytes) {
+    source = bytes
+    self.bytes = bytes.buffer
+  }
+
   init(bytes: [UInt8]) {
-    self.bytes = bytes
+    self.init(bytes: SceneBytes(bytes))
   }
 
   /// Where the next token is looked for: enough to resume there.
@@ -36,36 +45,34 @@ struct SceneTokenizer {
   }
 
   mutating func next() -> SceneToken {
-    bytes.withUnsafeBufferPointer { buffer in
-      skipBlanksAndComments(buffer)
-      let start = index
-      let column = start - lineStart + 1
-      guard start < buffer.count else {
-        return SceneToken(
-          kind: .end, start: start, end: start, line: line, column: column)
-      }
-      switch buffer[start] {
-      case UInt8(ascii: "{"):
+    skipBlanksAndComments()
+    let start = index
+    let column = start - lineStart + 1
+    guard start < bytes.count else {
+      return SceneToken(
+        kind: .end, start: start, end: start, line: line, column: column)
+    }
+    switch bytes[start] {
+    case UInt8(ascii: "{"):
+      index += 1
+      return SceneToken(
+        kind: .open, start: start, end: index, line: line, column: column)
+    case UInt8(ascii: "}"):
+      index += 1
+      return SceneToken(
+        kind: .close, start: start, end: index, line: line, column: column)
+    default:
+      while index < bytes.count && !Self.endsWord(bytes[index]) {
         index += 1
-        return SceneToken(
-          kind: .open, start: start, end: index, line: line, column: column)
-      case UInt8(ascii: "}"):
-        index += 1
-        return SceneToken(
-          kind: .close, start: start, end: index, line: line, column: column)
-      default:
-        while index < buffer.count && !Self.endsWord(buffer[index]) {
-          index += 1
-        }
-        return SceneToken(
-          kind: .word, start: start, end: index, line: line, column: column)
       }
+      return SceneToken(
+        kind: .word, start: start, end: index, line: line, column: column)
     }
   }
 
-  private mutating func skipBlanksAndComments(_ buffer: UnsafeBufferPointer<UInt8>) {
-    while index < buffer.count {
-      let byte = buffer[index]
+  private mutating func skipBlanksAndComments() {
+    while index < bytes.count {
+      let byte = bytes[index]
       if byte == UInt8(ascii: "\n") {
         index += 1
         line += 1
@@ -73,7 +80,7 @@ struct SceneTokenizer {
       } else if Self.isBlank(byte) {
         index += 1
       } else if byte == UInt8(ascii: "#") {
-        while index < buffer.count && buffer[index] != UInt8(ascii: "\n") {
+        while index < bytes.count && bytes[index] != UInt8(ascii: "\n") {
           index += 1
         }
       } else {
@@ -102,21 +109,19 @@ struct SceneTokenizer {
   /// `number(_:)` converts with the same code, and no word longer than
   /// the parser accepts. Only the result is left to the caller to check.
   mutating func plainSphere() -> (center: Vector3<Double>, radius: Double)? {
-    bytes.withUnsafeBufferPointer { buffer in
-      guard let base = buffer.baseAddress else { return nil }
-      var cursor = Cursor(
-        at: base + index, end: base + buffer.count, line: line,
-        lineStart: base + lineStart)
-      guard cursor.symbol(UInt8(ascii: "{")), cursor.keyword("center"),
-        let x = cursor.number(), let y = cursor.number(),
-        let z = cursor.number(), cursor.keyword("radius"),
-        let radius = cursor.number(), cursor.symbol(UInt8(ascii: "}"))
-      else { return nil }
-      index = cursor.at - base
-      line = cursor.line
-      lineStart = cursor.lineStart - base
-      return (Vector3(x, y, z), radius)
-    }
+    guard let base = bytes.baseAddress else { return nil }
+    var cursor = Cursor(
+      at: base + index, end: base + bytes.count, line: line,
+      lineStart: base + lineStart)
+    guard cursor.symbol(UInt8(ascii: "{")), cursor.keyword("center"),
+      let x = cursor.number(), let y = cursor.number(),
+      let z = cursor.number(), cursor.keyword("radius"),
+      let radius = cursor.number(), cursor.symbol(UInt8(ascii: "}"))
+    else { return nil }
+    index = cursor.at - base
+    line = cursor.line
+    lineStart = cursor.lineStart - base
+    return (Vector3(x, y, z), radius)
   }
 
   /// Where `plainSphere` has read to: each read skips the blanks and line
@@ -188,22 +193,18 @@ struct SceneTokenizer {
   func matches(_ token: SceneToken, _ keyword: StaticString) -> Bool {
     guard token.kind == .word, token.end - token.start == keyword.utf8CodeUnitCount
     else { return false }
-    return bytes.withUnsafeBufferPointer { buffer in
-      let pointer = keyword.utf8Start
-      for offset in 0..<keyword.utf8CodeUnitCount
-      where buffer[token.start + offset] != pointer[offset] {
-        return false
-      }
-      return true
+    let pointer = keyword.utf8Start
+    for offset in 0..<keyword.utf8CodeUnitCount
+    where bytes[token.start + offset] != pointer[offset] {
+      return false
     }
+    return true
   }
 
   /// The token as a number, or nil if it is not one.
   func number(_ token: SceneToken) -> Double? {
     guard token.kind == .word else { return nil }
-    return bytes.withUnsafeBufferPointer { buffer in
-      DecimalParser.parse(
-        UnsafeBufferPointer(rebasing: buffer[token.start..<token.end]))
-    }
+    return DecimalParser.parse(
+      UnsafeBufferPointer(rebasing: bytes[token.start..<token.end]))
   }
 }
