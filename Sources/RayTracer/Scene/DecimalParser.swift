@@ -57,28 +57,16 @@ enum DecimalParser {
     from start: UnsafePointer<UInt8>, to end: UnsafePointer<UInt8>
   ) -> Prefix {
     var cursor = start
-    var negative = false
     let first = cursor.pointee
-    if first == UInt8(ascii: "-") || first == UInt8(ascii: "+") {
-      negative = first == UInt8(ascii: "-")
-      cursor += 1
-    }
-    var mantissa: UInt64 = 0
-    var digits = 0
-    var significantDigits = 0
-    var exponent = 0
-    while cursor < end, let digit = decimalDigit(cursor.pointee) {
-      accumulate(digit, &mantissa, &significantDigits, &exponent, fraction: false)
-      digits &+= 1
-      cursor += 1
-    }
-    if cursor < end && cursor.pointee == UInt8(ascii: ".") {
-      cursor += 1
-      while cursor < end, let digit = decimalDigit(cursor.pointee) {
-        accumulate(digit, &mantissa, &significantDigits, &exponent, fraction: true)
-        digits += 1
-        cursor += 1
-      }
+    let negative = first == UInt8(ascii: "-")
+    if negative || first == UInt8(ascii: "+") { cursor += 1 }
+    let digitsStart = cursor
+    var (mantissa, exponent, digits) = allDigits(&cursor, end)
+    var significantDigits = digits
+    if digits > 19 {
+      cursor = digitsStart
+      (mantissa, exponent, significantDigits) = significantDigitsOnly(
+        &cursor, end)
     }
     if digits == 0 { return .noDigits }
     if cursor < end && (cursor.pointee | 0x20) == UInt8(ascii: "e") {
@@ -120,6 +108,57 @@ enum DecimalParser {
   private static func decimalDigit(_ byte: UInt8) -> UInt64? {
     let digit = byte &- UInt8(ascii: "0")
     return digit < 10 ? UInt64(digit) : nil
+  }
+
+  /// Reads `digits[.digits]`, every digit into the mantissa: leading
+  /// zeros add nothing to it, so up to 19 digits in all (10^19 < 2^64) it
+  /// is exactly the number's digits, as `significantDigitsOnly` reads
+  /// them, and the exponent theirs too: −1 for each digit after the point.
+  /// The mantissa of more digits is meaningless.
+  private static func allDigits(
+    _ cursor: inout UnsafePointer<UInt8>, _ end: UnsafePointer<UInt8>
+  ) -> (mantissa: UInt64, exponent: Int, digits: Int) {
+    var mantissa: UInt64 = 0
+    let integerStart = cursor
+    while cursor < end, let digit = decimalDigit(cursor.pointee) {
+      mantissa = mantissa &* 10 &+ digit
+      cursor += 1
+    }
+    let integerDigits = cursor - integerStart
+    var fractionDigits = 0
+    if cursor < end && cursor.pointee == UInt8(ascii: ".") {
+      cursor += 1
+      let fractionStart = cursor
+      while cursor < end, let digit = decimalDigit(cursor.pointee) {
+        mantissa = mantissa &* 10 &+ digit
+        cursor += 1
+      }
+      fractionDigits = cursor - fractionStart
+    }
+    return (mantissa, -fractionDigits, integerDigits + fractionDigits)
+  }
+
+  /// Reads `digits[.digits]` for numbers of more than 19 digits: leading
+  /// zeros are skipped, and digits past the 19th significant one only
+  /// counted, to send the number to the slow path.
+  private static func significantDigitsOnly(
+    _ cursor: inout UnsafePointer<UInt8>, _ end: UnsafePointer<UInt8>
+  ) -> (mantissa: UInt64, exponent: Int, significantDigits: Int) {
+    var mantissa: UInt64 = 0
+    var significantDigits = 0
+    var exponent = 0
+    while cursor < end, let digit = decimalDigit(cursor.pointee) {
+      accumulate(digit, &mantissa, &significantDigits, &exponent, fraction: false)
+      cursor += 1
+    }
+    if cursor < end && cursor.pointee == UInt8(ascii: ".") {
+      cursor += 1
+      while cursor < end, let digit = decimalDigit(cursor.pointee) {
+        accumulate(digit, &mantissa, &significantDigits, &exponent, fraction: true)
+        cursor += 1
+      }
+    }
+    return (mantissa, exponent, significantDigits)
   }
 
   /// Leading zeros are not significant; digits past the 19th only mark the
