@@ -523,23 +523,15 @@ public struct SceneParser {
     }
     let progress = try outcome.get()
     guard case .reached(let token) = progress, let runFirst = run.first,
-      token.start == runFirst.start, !run.objects.isEmpty,
-      run.objects.count <= state.declared.value - state.objects.count
+      token.start == runFirst.start, !run.spheres.isEmpty,
+      run.spheres.count <= state.declared.value - state.objects.count
     else { return progress }
     // The other parser counted lines from 1 at `split`.
     let lines = token.line - runFirst.line
     let inherited = state.material
-    let firstSpliced = state.objects.count
-    state.objects.append(contentsOf: run.objects)
-    // In place, after one bulk copy: an append per object showed in the
-    // parse of a million spheres.
-    state.objects.withUnsafeMutableBufferPointer { objects in
-      for index in firstSpliced..<firstSpliced + run.inheritingCount {
-        if case .sphere(var sphere) = objects[index] {
-          sphere.materialIndex = inherited
-          objects[index] = .sphere(sphere)
-        }
-      }
+    for (offset, var sphere) in run.spheres.enumerated() {
+      if offset < run.inheritingCount { sphere.materialIndex = inherited }
+      state.objects.append(.sphere(sphere))
     }
     for var check in run.parser.pendingMaterialChecks {
       check.token.line += lines
@@ -548,7 +540,7 @@ public struct SceneParser {
     if run.sawMaterialIndex {
       state.material = run.parser.currentMaterial
     }
-    splicedObjects += run.objects.count
+    splicedObjects += run.spheres.count
     var resume = run.stop
     resume.line += lines
     tokenizer.position = resume
@@ -563,8 +555,10 @@ public struct SceneParser {
     let capacity: Int
     /// The first token read, if any.
     var first: SceneToken?
-    var objects: [SceneObject<Double>] = []
-    /// How many objects come before the first `MaterialIndex`, and so take
+    /// Spheres rather than objects: plain values, which are copied and
+    /// freed without a call per element.
+    var spheres: [Sphere<Double>] = []
+    /// How many spheres come before the first `MaterialIndex`, and so take
     /// the material current where the run starts.
     var inheritingCount = 0
     var sawMaterialIndex = false
@@ -580,13 +574,13 @@ public struct SceneParser {
     }
 
     mutating func read() {
-      objects.reserveCapacity(
+      spheres.reserveCapacity(
         Swift.min(
           capacity,
           (parser.tokenizer.bytes.count - stop.index) / SceneParser.minimumObjectLength))
       // A placeholder no `MaterialIndex` can give.
       parser.currentMaterial = -1
-      while objects.count < capacity {
+      while spheres.count < capacity {
         let token = parser.tokenizer.next()
         if first == nil { first = token }
         guard token.kind == .word,
@@ -595,7 +589,7 @@ public struct SceneParser {
         if parser.tokenizer.matches(token, "Sphere") {
           guard let sphere = try? parser.parseSphere(material: parser.currentMaterial)
           else { return }
-          objects.append(.sphere(sphere))
+          spheres.append(sphere)
           if !sawMaterialIndex { inheritingCount += 1 }
         } else if parser.tokenizer.matches(token, "MaterialIndex") {
           let valueToken = parser.peekStart()
