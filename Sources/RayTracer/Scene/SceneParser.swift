@@ -54,6 +54,9 @@ public struct SceneParser {
   /// The material a `SphereRun` gives the spheres it reads.
   private var currentMaterial = 0
   private var splicedObjects = 0
+  /// Off only in tests, which compare the sphere reading of
+  /// `SceneTokenizer.plainSphere` with the token by token one.
+  var readsPlainSpheres = true
   private var concurrentFrom = (
     groupSize: SceneParser.concurrentGroupSize, bytes: SceneParser.concurrentBytes
   )
@@ -86,19 +89,24 @@ public struct SceneParser {
 
   /// Reads and parses the file at `path`.
   public static func parse(contentsOf path: String) throws(SceneError) -> Scene {
-    let bytes: [UInt8]
+    let bytes: SceneBytes
     do {
-      bytes = try readFile(path)
+      bytes = try SceneBytes.contentsOf(path)
     } catch {
       throw SceneError(file: path, line: 0, column: 0, message: error.reason)
     }
-    return try parse(bytes: bytes, file: path)
+    var parser = SceneParser(bytes: bytes, file: path)
+    return try parser.parseScene()
   }
 
   init(bytes: [UInt8], file: String) {
+    self.init(bytes: SceneBytes(bytes), file: file)
+  }
+
+  init(bytes: SceneBytes, file: String) {
     tokenizer = SceneTokenizer(bytes: bytes)
     self.file = file
-    objectBudget = bytes.count / Self.minimumObjectLength
+    objectBudget = bytes.buffer.count / Self.minimumObjectLength
   }
 
   // MARK: - Blocks
@@ -420,6 +428,15 @@ public struct SceneParser {
       case .word:
         break
       }
+      // Spheres first, the objects of large scenes: the checks below, in
+      // the order they make them.
+      if tokenizer.matches(token, "Sphere") {
+        if state.objects.count == state.declared.value {
+          throw tooMany(state.declared, "Group", "numObjects", "object", token)
+        }
+        state.objects.append(.sphere(try parseSphere(material: state.material)))
+        continue
+      }
       if tokenizer.matches(token, "MaterialIndex") {
         let valueToken = peekStart()
         let value = try wholeNumber("MaterialIndex")
@@ -477,8 +494,9 @@ public struct SceneParser {
     _ state: inout GroupState, from split: Int
   ) throws(SceneError) -> GroupProgress {
     var run = SphereRun(
-      bytes: tokenizer.bytes, file: file, from: split,
+      bytes: tokenizer.source, file: file, from: split,
       capacity: state.declared.value - state.objects.count)
+    run.parser.readsPlainSpheres = readsPlainSpheres
     var outcome: Result<GroupProgress, SceneError> = .success(.spliced)
     withUnsafeMutablePointer(to: &self) { parser in
       withUnsafeMutablePointer(to: &state) { state in
@@ -505,19 +523,15 @@ public struct SceneParser {
     }
     let progress = try outcome.get()
     guard case .reached(let token) = progress, let runFirst = run.first,
-      token.start == runFirst.start, !run.objects.isEmpty,
-      run.objects.count <= state.declared.value - state.objects.count
+      token.start == runFirst.start, !run.spheres.isEmpty,
+      run.spheres.count <= state.declared.value - state.objects.count
     else { return progress }
     // The other parser counted lines from 1 at `split`.
     let lines = token.line - runFirst.line
     let inherited = state.material
-    for (offset, object) in run.objects.enumerated() {
-      if offset < run.inheritingCount, case .sphere(var sphere) = object {
-        sphere.materialIndex = inherited
-        state.objects.append(.sphere(sphere))
-      } else {
-        state.objects.append(object)
-      }
+    for (offset, var sphere) in run.spheres.enumerated() {
+      if offset < run.inheritingCount { sphere.materialIndex = inherited }
+      state.objects.append(.sphere(sphere))
     }
     for var check in run.parser.pendingMaterialChecks {
       check.token.line += lines
@@ -526,7 +540,7 @@ public struct SceneParser {
     if run.sawMaterialIndex {
       state.material = run.parser.currentMaterial
     }
-    splicedObjects += run.objects.count
+    splicedObjects += run.spheres.count
     var resume = run.stop
     resume.line += lines
     tokenizer.position = resume
@@ -541,15 +555,17 @@ public struct SceneParser {
     let capacity: Int
     /// The first token read, if any.
     var first: SceneToken?
-    var objects: [SceneObject<Double>] = []
-    /// How many objects come before the first `MaterialIndex`, and so take
+    /// Spheres rather than objects: plain values, which are copied and
+    /// freed without a call per element.
+    var spheres: [Sphere<Double>] = []
+    /// How many spheres come before the first `MaterialIndex`, and so take
     /// the material current where the run starts.
     var inheritingCount = 0
     var sawMaterialIndex = false
     /// Where the first token not read starts.
     var stop: SceneTokenizer.Position
 
-    init(bytes: [UInt8], file: String, from split: Int, capacity: Int) {
+    init(bytes: SceneBytes, file: String, from split: Int, capacity: Int) {
       parser = SceneParser(bytes: bytes, file: file)
       parser.tokenizer.position = SceneTokenizer.Position(
         index: split, line: 1, lineStart: split)
@@ -558,13 +574,13 @@ public struct SceneParser {
     }
 
     mutating func read() {
-      objects.reserveCapacity(
+      spheres.reserveCapacity(
         Swift.min(
           capacity,
           (parser.tokenizer.bytes.count - stop.index) / SceneParser.minimumObjectLength))
       // A placeholder no `MaterialIndex` can give.
       parser.currentMaterial = -1
-      while objects.count < capacity {
+      while spheres.count < capacity {
         let token = parser.tokenizer.next()
         if first == nil { first = token }
         guard token.kind == .word,
@@ -573,7 +589,7 @@ public struct SceneParser {
         if parser.tokenizer.matches(token, "Sphere") {
           guard let sphere = try? parser.parseSphere(material: parser.currentMaterial)
           else { return }
-          objects.append(.sphere(sphere))
+          spheres.append(sphere)
           if !sawMaterialIndex { inheritingCount += 1 }
         } else if parser.tokenizer.matches(token, "MaterialIndex") {
           let valueToken = parser.peekStart()
@@ -793,8 +809,18 @@ public struct SceneParser {
 
   /// The hot path of large scenes: keywords are compared as bytes, and
   /// nothing is allocated. The same checks and messages as `parseFields`
-  /// with `positive` for the radius.
+  /// with `positive` for the radius. The plain form, nearly every sphere
+  /// of a generated scene, is read in one pass first; whatever that pass
+  /// leaves, errors included, is read token by token.
   private mutating func parseSphere(material: Int) throws(SceneError) -> Sphere<Double> {
+    let start = tokenizer.position
+    if readsPlainSpheres, let (center, radius) = tokenizer.plainSphere() {
+      if radius > 0 {
+        return Sphere(center: center, radius: radius, materialIndex: material)
+      }
+      // The error at the radius comes from the reading below.
+      tokenizer.position = start
+    }
     try expect(.open, "'{' after Sphere")
     var center: Vector3<Double>?
     var radius: Double?
@@ -1151,6 +1177,15 @@ struct FileReadError: Error {
 /// /dev/zero, a FIFO or a directory named as a scene or a mesh would
 /// otherwise hang the program or exhaust its memory.
 func readFile(_ path: String) throws(FileReadError) -> [UInt8] {
+  let (descriptor, size) = try openRegularFile(path)
+  return try readOpenFile(descriptor, expected: size)
+}
+
+/// Opens `path` for reading if it is a regular file of at most
+/// `maximumFileSize` bytes: its descriptor, and its size as reported.
+func openRegularFile(
+  _ path: String
+) throws(FileReadError) -> (descriptor: Int32, size: Int) {
   // Non-blocking: opening a FIFO for reading would otherwise wait for a
   // writer, forever, before fstat below could refuse it. The flag changes
   // nothing for the regular files that are read.
@@ -1158,27 +1193,37 @@ func readFile(_ path: String) throws(FileReadError) -> [UInt8] {
   guard descriptor >= 0 else {
     throw FileReadError(reason: "cannot open the file: \(String(cString: strerror(errno)))")
   }
+  var status = stat()
+  guard fstat(descriptor, &status) == 0 else {
+    let reason = String(cString: strerror(errno))
+    close(descriptor)
+    throw FileReadError(reason: "cannot read the file: \(reason)")
+  }
+  guard (status.st_mode & S_IFMT) == S_IFREG else {
+    close(descriptor)
+    throw FileReadError(reason: "not a regular file")
+  }
+  guard Int(status.st_size) <= maximumFileSize else {
+    close(descriptor)
+    throw FileReadError(
+      reason: "the file is \(status.st_size) bytes; the limit is \(maximumFileSize)")
+  }
+  return (descriptor, Int(status.st_size))
+}
+
+/// Reads the file open at `descriptor` to its end, and closes it.
+func readOpenFile(
+  _ descriptor: Int32, expected: Int
+) throws(FileReadError) -> [UInt8] {
   guard let handle = fdopen(descriptor, "rb") else {
     let reason = String(cString: strerror(errno))
     close(descriptor)
     throw FileReadError(reason: "cannot open the file: \(reason)")
   }
   defer { fclose(handle) }
-  var status = stat()
-  guard fstat(fileno(handle), &status) == 0 else {
-    throw FileReadError(reason: "cannot read the file: \(String(cString: strerror(errno)))")
-  }
-  guard (status.st_mode & S_IFMT) == S_IFREG else {
-    throw FileReadError(reason: "not a regular file")
-  }
-  guard Int(status.st_size) <= maximumFileSize else {
-    throw FileReadError(
-      reason: "the file is \(status.st_size) bytes; the limit is \(maximumFileSize)")
-  }
   // Straight into the array when the size is right: a 72 MB scene was
   // otherwise copied once more, chunk by chunk. A file that grows while it
   // is read goes on in chunks.
-  let expected = Int(status.st_size)
   var failed = false
   var bytes = [UInt8](unsafeUninitializedCapacity: expected) { buffer, count in
     count = fread(buffer.baseAddress, 1, expected, handle)

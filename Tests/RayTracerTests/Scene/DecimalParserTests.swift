@@ -202,4 +202,154 @@ final class DecimalParserTests: XCTestCase {
       assertAgrees(sign + digits + exponent, "seed \(seed)")
     }
   }
+
+  // MARK: - The fast path
+
+  /// How `DecimalParser.prefix` reads `text`: the value when its fast path
+  /// converts it, and how many bytes the number takes.
+  func prefix(_ text: String) -> (fast: Double?, length: Int?) {
+    Array(text.utf8).withUnsafeBufferPointer { buffer in
+      guard let start = buffer.baseAddress, !buffer.isEmpty else {
+        return (nil, nil)
+      }
+      switch DecimalParser.prefix(from: start, to: start + buffer.count) {
+      case .fast(let value, let end): return (value, end - start)
+      case .slow(let end): return (nil, end - start)
+      case .noDigits, .invalid: return (nil, nil)
+      }
+    }
+  }
+
+  /// Asserts the fast path converts `text`, all of it, to the standard
+  /// library's correctly rounded value.
+  func assertFast(
+    _ text: String, _ context: @autoclosure () -> String = "",
+    file: StaticString = #filePath, line: UInt = #line
+  ) {
+    let (fast, length) = prefix(text)
+    guard let fast else {
+      XCTFail(
+        "\(text) is left to the slow path \(context())", file: file,
+        line: line)
+      return
+    }
+    XCTAssertEqual(length, text.utf8.count, text, file: file, line: line)
+    XCTAssertEqual(
+      fast.bitPattern, Double(text)?.bitPattern,
+      "\(text): \(fast) vs \(Double(text).map { "\($0)" } ?? "nil") "
+        + context(),
+      file: file, line: line)
+  }
+
+  /// The fast path's edges: 19 significant digits, a mantissa of 2^53,
+  /// exponents of ±22, leading and trailing zeros, zero.
+  func testPrefix_FastPathLimits() {
+    for text in [
+      "9007199254740992", "9007199254740992e22", "9007199254740992e-22",
+      "-9007199254740992e22", "1e22", "1e-22", "0.0000000000000000000001",
+      "1e21", "0.9007199254740992", "900719925474099.2", "1.000000000000000",
+      "0000000000000000000000000000001", "0", "-0", "0e22", "-0e-22",
+      // 19 digits in all, leading zeros included, and 20, which are read
+      // again without the zeros.
+      "000000000000000001.5", "0000000000000000001.5", "0.000000000000000015",
+      "0.0000000000000000015", "-123456789012345.6e-3",
+    ] {
+      assertFast(text)
+    }
+    for text in [
+      "9007199254740993", "9007199254740993e-22", "1e23", "1e-23",
+      "0.00000000000000000000001", "10000000000000000000000",
+      "12345678901234567890", "1234567890123456789e1", "1e400", "4.9e-324",
+      // Exact, but past the limits as counted: zeros are digits too.
+      "1000000000000000000000", "1.000000000000000000", "0e-400",
+      "0.000000000000000000000000000000e999",
+    ] {
+      XCTAssertNil(prefix(text).fast, text)
+      XCTAssertEqual(prefix(text).length, text.utf8.count, text)
+      assertAgrees(text)
+    }
+  }
+
+  /// Where a number stops: at the first byte that cannot continue it.
+  func testPrefix_StopsAtTheFirstByteNotPartOfTheNumber() {
+    for (text, length) in [
+      ("1.5x", 3), ("1e5e5", 3), ("-2.5}", 4), ("1..2", 2), ("7 8", 1),
+      ("0x10", 1), ("1e+5.5", 4), ("12#", 2), ("3.{", 2),
+    ] {
+      XCTAssertEqual(prefix(text).length, length, text)
+    }
+    for text in ["-", "+", ".", "-.", "e5", "inf", "nan", "1e", "1e+", "2E-x"] {
+      XCTAssertNil(prefix(text).length, text)
+    }
+  }
+
+  /// Numbers as scene files write them take the fast path, and it gives
+  /// the standard library's correctly rounded value: `%.7g` (what
+  /// gen_spheres.py writes), the shortest round trip of a Float, and
+  /// `%.15g` and the shortest round trip of a Double when their mantissa
+  /// fits (below 2^53, exponent within ±22).
+  func testPrefix_SceneShapesTakeTheFastPath() {
+    forEachSeed(100_000, base: 0xDEC1_0003) { generator, seed in
+      let value = generator.sign() * generator.logUniform(1e-8, 1e8)
+      assertFast(String(format: "%.7g", value), "seed \(seed)")
+      assertFast(String(format: "%.7e", value), "seed \(seed)")
+      assertFast("\(Float(value))", "seed \(seed)")
+      assertFast(String(format: "%.15g", value), "seed \(seed)")
+      let shortest = "\(value)"
+      if prefix(shortest).fast == nil {
+        XCTAssertNil(prefix(String(format: "%.17g", value)).fast)
+        assertAgrees(shortest, "seed \(seed)")
+      } else {
+        assertFast(shortest, "seed \(seed)")
+      }
+    }
+  }
+
+  /// Long mantissas and far exponents: whichever path converts them, the
+  /// value is the standard library's.
+  func testPrefix_LongMantissasAndFarExponents() {
+    forEachSeed(50_000, base: 0xDEC1_0004) { generator, seed in
+      let digits = (0..<Int.random(in: 1...40, using: &generator)).map { _ in
+        String(Int.random(in: 0...9, using: &generator))
+      }.joined()
+      let exponent = Int.random(in: -340...320, using: &generator)
+      assertAgrees("\(digits)e\(exponent)", "seed \(seed)")
+      assertAgrees("0.\(digits)e\(exponent)", "seed \(seed)")
+      let value = Double(bitPattern: generator.next() >> 1)
+      if value.isFinite {
+        assertAgrees(String(format: "%.17g", value), "seed \(seed)")
+        assertAgrees(String(format: "%.7g", value), "seed \(seed)")
+      }
+    }
+  }
+
+  /// An odd integer q in [2^53/5, 2^54/5): 10q is then twice an odd
+  /// 54-bit number, exactly halfway between two Doubles, and `qe1` reaches
+  /// the fast path (q < 2^53).
+  static func halfwayMantissa(using generator: inout SplitMix64) -> UInt64 {
+    let low = (UInt64(1) << 53) / 5 + 1
+    let high = (UInt64(1) << 54) / 5
+    return UInt64.random(in: low..<high, using: &generator) | 1
+  }
+
+  /// Ties reach the fast path only through its multiplication (a quotient
+  /// m / 10^k of m ≤ 2^53 is never halfway: that would need 5^k to
+  /// divide a 54-bit odd number no larger than m); the product of exact
+  /// operands is rounded once, ties to even: to the neighbour whose last
+  /// significand bit is 0, which is also the standard library's value.
+  func testPrefix_HalfwayProductsRoundToEven() {
+    forEachSeed(20_000, base: 0xDEC1_0005) { generator, seed in
+      let q = Self.halfwayMantissa(using: &generator)
+      // 10q ≡ 2 (mod 4) in [2^54, 2^55), where Doubles are 4 apart.
+      let below = Double(q * 10 - 2)
+      let above = Double(q * 10 + 2)
+      let even = below.significandBitPattern & 1 == 0 ? below : above
+      for (text, sign) in [
+        ("\(q)e1", 1.0), ("-\(q)e1", -1.0), ("+\(q)E+1", 1.0),
+      ] {
+        assertFast(text, "seed \(seed)")
+        XCTAssertEqual(prefix(text).fast, sign * even, "\(text) seed \(seed)")
+      }
+    }
+  }
 }

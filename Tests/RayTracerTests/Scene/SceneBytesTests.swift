@@ -1,0 +1,78 @@
+import Foundation
+import XCTest
+
+@testable import RayTracer
+
+final class SceneBytesTests: XCTestCase {
+  var path = ""
+
+  override func setUp() {
+    path =
+      FileManager.default.temporaryDirectory
+      .appendingPathComponent("raytrace-scene-bytes-\(UUID().uuidString)").path
+  }
+
+  override func tearDown() {
+    try? FileManager.default.removeItem(atPath: path)
+  }
+
+  /// Every byte, whether the file is read or mapped: sizes around the
+  /// mapping threshold, and a mapping whose end is not a page's.
+  func testContentsOf_EveryByteMappedOrRead() throws {
+    var generator = SplitMix64(seed: 0x5CE4E)
+    let threshold = SceneBytes.mappingThreshold
+    for count in [0, 1, 4096, threshold - 1, threshold, threshold + 4097] {
+      let bytes = (0..<count).map { _ in
+        UInt8(truncatingIfNeeded: generator.next())
+      }
+      try Data(bytes).write(to: URL(fileURLWithPath: path))
+      let read = try SceneBytes.contentsOf(path)
+      XCTAssertEqual(Array(read.buffer), bytes, "\(count) bytes")
+      XCTAssertEqual(read.isMapped, count >= threshold, "\(count) bytes")
+    }
+  }
+
+  /// A mapped scene parses to the scene its bytes give, to the bit, and
+  /// its errors carry the file's name and their position.
+  func testParse_MappedSceneAsItsBytes() throws {
+    var text = SceneParserTests.camera + "Group {\n  numObjects 30000\n"
+    var generator = SplitMix64(seed: 0x5CE4F)
+    for _ in 0..<30_000 {
+      let v = (0..<4).map { _ in
+        String(format: "%.7g", generator.logUniform(1e-3, 1e3) as Double)
+      }
+      text += "  Sphere { center \(v[0]) -\(v[1]) \(v[2])  radius \(v[3]) }\n"
+    }
+    let whole = text + "}\n"
+    try whole.write(toFile: path, atomically: false, encoding: .utf8)
+    XCTAssertTrue(try SceneBytes.contentsOf(path).isMapped)
+    let mapped = try SceneParser.parse(contentsOf: path)
+    let fromBytes = try SceneParser.parse(bytes: Array(whole.utf8), file: path)
+    XCTAssertEqual(mapped.root.objects.count, 30_000)
+    XCTAssertEqual(
+      SceneTokenizerTests.sphereBits(mapped.root),
+      SceneTokenizerTests.sphereBits(fromBytes.root))
+
+    try (text + "  Sphere { center 0 0 0 radius 1 }\n}\n").write(
+      toFile: path, atomically: false, encoding: .utf8)
+    XCTAssertThrowsError(try SceneParser.parse(contentsOf: path)) { error in
+      XCTAssertEqual(
+        "\(error)",
+        "\(path):30004:3: error: Group has more objects than numObjects "
+          + "(line 3) says (30000)")
+    }
+  }
+
+  /// Refused before anything is mapped or read, with the system's reason.
+  func testContentsOf_RefusesWhatIsNotARegularFile() {
+    for (name, reason) in [
+      (path + ".missing", "cannot open the file: No such file or directory"),
+      (FileManager.default.temporaryDirectory.path, "not a regular file"),
+      ("/dev/zero", "not a regular file"),
+    ] {
+      XCTAssertThrowsError(try SceneBytes.contentsOf(name)) { error in
+        XCTAssertEqual((error as? FileReadError)?.reason, reason, name)
+      }
+    }
+  }
+}
