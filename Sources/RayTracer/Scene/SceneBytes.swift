@@ -4,63 +4,74 @@ import Glibc
 import Darwin
 #endif
 
-/// The bytes a scene is parsed from: a large file mapped into memory, or a
-/// copy of an array. Immutable once made, so the threads of a parse share
-/// it.
+/// The bytes a scene is parsed from, immutable once read, so the threads
+/// of a parse share them.
 ///
-/// Mapping a large scene skips the copy from the page cache into fresh
-/// memory, and the zeroing of that memory: about 35 ms of the 0.19 s a
-/// 72 MB scene took to parse, all of it before either thread could start.
-///
-/// A mapped file that another process truncates while it is parsed
-/// raises SIGBUS at the first page past its new end; a file that grows is
-/// parsed as it was when mapped. Reading it would give a consistent copy,
-/// but the risk is that of any program that maps its input, and only
-/// files of at least `mappingThreshold` bytes take it.
+/// A large file is read in two halves at once, with `pread`, into memory
+/// advised onto 2 MiB pages: the copy out of the page cache and the
+/// zeroing of fresh pages had been about 35 ms of the 0.19 s a 72 MB scene
+/// took to parse, all of it before either thread of the parse could start.
+/// Mapping the file instead measured a little faster, but a mapped file
+/// that another process truncates raises SIGBUS mid-parse: a crash where
+/// a read gives a consistent copy, or an error.
 final class SceneBytes: @unchecked Sendable {
   let buffer: UnsafeBufferPointer<UInt8>
-  let isMapped: Bool
 
-  /// Smaller files are read: the copy costs little there, and files
-  /// whose reported size is not their length (as under /proc) are small.
-  static let mappingThreshold = 1 << 20
+  /// Smaller files are read in one piece: splitting costs a thread's
+  /// wake-up, which the copy of a small file does not repay.
+  static let splitThreshold = 1 << 20
 
   init(_ bytes: [UInt8]) {
     let copy = UnsafeMutableBufferPointer<UInt8>.allocate(capacity: bytes.count)
     _ = copy.initialize(from: bytes)
     buffer = UnsafeBufferPointer(copy)
-    isMapped = false
   }
 
-  private init(mapped start: UnsafeRawPointer, count: Int) {
-    buffer = UnsafeBufferPointer(
-      start: start.assumingMemoryBound(to: UInt8.self), count: count)
-    isMapped = true
+  private init(filled: UnsafeMutableBufferPointer<UInt8>) {
+    buffer = UnsafeBufferPointer(filled)
   }
 
   deinit {
-    if isMapped {
-      munmap(
-        UnsafeMutableRawPointer(mutating: buffer.baseAddress), buffer.count)
-    } else {
-      buffer.deallocate()
-    }
+    buffer.deallocate()
   }
 
-  /// The file at `path`, mapped when it is large and the system allows,
-  /// read otherwise; errors, and the files refused, are `readFile`'s.
+  /// The file at `path`; errors, and the files refused, are `readFile`'s.
   static func contentsOf(_ path: String) throws(FileReadError) -> SceneBytes {
     let (descriptor, size) = try openRegularFile(path)
-    if size >= mappingThreshold {
-      // Not populated up front: each thread of the parse then takes the
-      // page faults of its own half, which measured as fast as mapping
-      // every page before either starts.
-      let start = mmap(nil, size, PROT_READ, MAP_PRIVATE, descriptor, 0)
-      if let start, start != MAP_FAILED {
-        close(descriptor)
-        return SceneBytes(mapped: start, count: size)
-      }
+    if size >= splitThreshold, let bytes = readInHalves(descriptor, size: size) {
+      close(descriptor)
+      return bytes
     }
     return SceneBytes(try readOpenFile(descriptor, expected: size))
+  }
+
+  /// Exactly `size` bytes read by two threads, or nil when the file did
+  /// not have exactly that many (it changed since its size was taken) or
+  /// a read failed: the caller then reads it the ordinary way, which
+  /// reports the error or follows the file's new length.
+  private static func readInHalves(_ descriptor: Int32, size: Int) -> SceneBytes? {
+    let buffer = UnsafeMutableBufferPointer<UInt8>.allocate(capacity: size)
+    Renderer.adviseHugePages(UnsafeMutableRawBufferPointer(buffer))
+    let complete = UnsafeMutableBufferPointer<Bool>.allocate(capacity: 2)
+    defer { complete.deallocate() }
+    let shared = Shared((buffer, complete))
+    Parallel.inParts(size, 2) { part, range in
+      let (buffer, complete) = shared.value
+      var offset = range.lowerBound
+      while offset < range.upperBound {
+        let count = pread(
+          descriptor, buffer.baseAddress! + offset, range.upperBound - offset, off_t(offset))
+        if count < 0 && errno == EINTR { continue }
+        guard count > 0 else { break }
+        offset += count
+      }
+      complete[part] = offset == range.upperBound
+    }
+    var probe: UInt8 = 0
+    guard complete[0] && complete[1], pread(descriptor, &probe, 1, off_t(size)) == 0 else {
+      buffer.deallocate()
+      return nil
+    }
+    return SceneBytes(filled: buffer)
   }
 }

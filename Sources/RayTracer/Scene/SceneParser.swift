@@ -502,7 +502,7 @@ public struct SceneParser {
       withUnsafeMutablePointer(to: &state) { state in
         withUnsafeMutablePointer(to: &run) { run in
           withUnsafeMutablePointer(to: &outcome) { outcome in
-            let shared = Unchecked((parser, state, run, outcome))
+            let shared = Shared((parser, state, run, outcome))
             DispatchQueue.concurrentPerform(iterations: 2) { thread in
               let (parser, state, run, outcome) = shared.value
               if thread == 0 {
@@ -1242,10 +1242,4 @@ func readOpenFile(
     throw FileReadError(reason: "cannot read the file: \(String(cString: strerror(errno)))")
   }
   return bytes
-}
-
-/// Pointers handed to the threads of a parse, which touch disjoint state.
-private struct Unchecked<Value>: @unchecked Sendable {
-  let value: Value
-  init(_ value: Value) { self.value = value }
 }

@@ -16,11 +16,11 @@ final class SceneBytesTests: XCTestCase {
     try? FileManager.default.removeItem(atPath: path)
   }
 
-  /// Every byte, whether the file is read or mapped: sizes around the
-  /// mapping threshold, and a mapping whose end is not a page's.
-  func testContentsOf_EveryByteMappedOrRead() throws {
+  /// Every byte, whether the file is read whole or in halves: sizes
+  /// around the threshold, and odd sizes whose halves are not pages.
+  func testContentsOf_EveryByteWholeOrInHalves() throws {
     var generator = SplitMix64(seed: 0x5CE4E)
-    let threshold = SceneBytes.mappingThreshold
+    let threshold = SceneBytes.splitThreshold
     for count in [0, 1, 4096, threshold - 1, threshold, threshold + 4097] {
       let bytes = (0..<count).map { _ in
         UInt8(truncatingIfNeeded: generator.next())
@@ -28,13 +28,12 @@ final class SceneBytesTests: XCTestCase {
       try Data(bytes).write(to: URL(fileURLWithPath: path))
       let read = try SceneBytes.contentsOf(path)
       XCTAssertEqual(Array(read.buffer), bytes, "\(count) bytes")
-      XCTAssertEqual(read.isMapped, count >= threshold, "\(count) bytes")
     }
   }
 
-  /// A mapped scene parses to the scene its bytes give, to the bit, and
-  /// its errors carry the file's name and their position.
-  func testParse_MappedSceneAsItsBytes() throws {
+  /// A scene read in halves parses to the scene its bytes give, to the
+  /// bit, and its errors carry the file's name and their position.
+  func testParse_SceneReadInHalvesAsItsBytes() throws {
     var text = SceneParserTests.camera + "Group {\n  numObjects 30000\n"
     var generator = SplitMix64(seed: 0x5CE4F)
     for _ in 0..<30_000 {
@@ -45,7 +44,7 @@ final class SceneBytesTests: XCTestCase {
     }
     let whole = text + "}\n"
     try whole.write(toFile: path, atomically: false, encoding: .utf8)
-    XCTAssertTrue(try SceneBytes.contentsOf(path).isMapped)
+    XCTAssertGreaterThan(whole.utf8.count, SceneBytes.splitThreshold)
     let mapped = try SceneParser.parse(contentsOf: path)
     let fromBytes = try SceneParser.parse(bytes: Array(whole.utf8), file: path)
     XCTAssertEqual(mapped.root.objects.count, 30_000)
@@ -63,7 +62,7 @@ final class SceneBytesTests: XCTestCase {
     }
   }
 
-  /// Refused before anything is mapped or read, with the system's reason.
+  /// Refused before anything is read, with the system's reason.
   func testContentsOf_RefusesWhatIsNotARegularFile() {
     for (name, reason) in [
       (path + ".missing", "cannot open the file: No such file or directory"),

@@ -1,7 +1,7 @@
 import Dispatch
 
-/// Work split over threads by index range, for the compile and render
-/// steps whose parts write disjoint memory.
+/// Work split over threads by index range, for the reading, compiling and
+/// rendering steps whose parts write disjoint memory.
 enum Parallel {
   /// Calls `body` for `parts` consecutive ranges covering 0..<count, each
   /// on its own thread when there are several.
