@@ -121,26 +121,35 @@ public enum CameraRelative {
       narrowed(dx.sum, dx.error), narrowed(dy.sum, dy.error), narrowed(dz.sum, dz.error))
     // On the stack: this runs once per sphere, a million times for the
     // largest scenes.
-    let c: S = withUnsafeTemporaryAllocation(of: Input.self, capacity: 14) { terms in
-      var count = 0
-      func append(_ term: Input) {
-        terms[count] = term
-        count += 1
+    func sum(keepingZeros: Bool) -> S {
+      withUnsafeTemporaryAllocation(of: Input.self, capacity: 14) { terms in
+        var count = 0
+        func append(_ term: Input) {
+          guard keepingZeros || term != 0 else { return }
+          terms[count] = term
+          count += 1
+        }
+        func appendSquare(_ d: (sum: Input, error: Input)) {
+          let square = Compensated.twoProduct(d.sum, d.sum)
+          append(square.product)
+          append(square.error)
+          append(2 * d.sum * d.error)
+          append(d.error * d.error)
+        }
+        appendSquare(dx)
+        appendSquare(dy)
+        appendSquare(dz)
+        append(-radiusSquared.product)
+        append(-radiusSquared.error)
+        return roundedSum(UnsafeMutableBufferPointer(rebasing: terms[0..<count]))
       }
-      func appendSquare(_ d: (sum: Input, error: Input)) {
-        let square = Compensated.twoProduct(d.sum, d.sum)
-        append(square.product)
-        append(square.error)
-        append(2 * d.sum * d.error)
-        append(d.error * d.error)
-      }
-      appendSquare(dx)
-      appendSquare(dy)
-      appendSquare(dz)
-      append(-radiusSquared.product)
-      append(-radiusSquared.error)
-      return roundedSum(UnsafeMutableBufferPointer(rebasing: terms[0..<count]))
     }
+    // Zero terms (two for each coordinate where centre − eye is exact, as
+    // for an eye on an axis) sort last and add nothing: left out, the sum
+    // is the same in fewer steps, up to the sign of a zero result, which
+    // the full sum then settles.
+    var c = sum(keepingZeros: false)
+    if c == 0 { c = sum(keepingZeros: true) }
     return (offset, c)
   }
 
