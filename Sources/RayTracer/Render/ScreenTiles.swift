@@ -259,8 +259,12 @@ struct ScreenProjection: Sendable {
     // plane, A below stays within [3/4, 1]·(r₃·p)², and every quantity is
     // a sum of terms of known size (`Λ`).
     guard p3 >= 2 * ρ * n3, p3.isFinite, ρ.isFinite, p.isFinite else { return whole }
-    guard let x = screenInterval(axes.x, p, p3, ρ),
-      let y = screenInterval(axes.y, p, p3, ρ)
+    // Shared by both axes: A, 1/A, 1/P₃ and |p| + ρ (one division each
+    // rather than one per axis; the extra rounding is far inside the pad).
+    let shared = IntervalTerms(
+      p3: p3, ρ: ρ, a: p3 * p3 - ρ * ρ * r3LengthSquared, extent: p.length + ρ)
+    guard let x = screenInterval(axes.x, p, shared),
+      let y = screenInterval(axes.y, p, shared)
     else { return whole }
     // The pixels whose own screen coordinates lie in the intervals. Those
     // were rounded in the render's precision (`screenX`: a division and a
@@ -299,23 +303,38 @@ struct ScreenProjection: Sendable {
   /// at most a few dozen ε of Double each, and A ≥ 3/4·P₃² bounds the
   /// division. The interval is widened by 2⁻³⁰·Λ·condition, about 2²²
   /// times that bound; on screen that is a few billionths of the image.
+  struct IntervalTerms {
+    let p3: Double
+    let ρ: Double
+    let a: Double
+    let inverseA: Double
+    let inverseP3: Double
+    let extent: Double
+
+    init(p3: Double, ρ: Double, a: Double, extent: Double) {
+      (self.p3, self.ρ, self.a, self.extent) = (p3, ρ, a, extent)
+      inverseA = 1 / a
+      inverseP3 = 1 / p3
+    }
+  }
+
   @inline(__always)
   private func screenInterval(
-    _ axis: Axis, _ p: Vector3<Double>, _ p3: Double, _ ρ: Double
+    _ axis: Axis, _ p: Vector3<Double>, _ terms: IntervalTerms
   ) -> (lower: Double, upper: Double)? {
+    let (p3, ρ) = (terms.p3, terms.ρ)
     let ri = axis.row
     let pi = ri.dot(p)
-    let a = p3 * p3 - ρ * ρ * r3LengthSquared
     let b = pi * p3 - ρ * ρ * axis.dotR3
     let tangent = ri * p3 - r3 * pi
     let discriminant = Swift.max(0, tangent.lengthSquared - ρ * ρ * axis.crossR3Squared)
     let s = ρ * discriminant.squareRoot()
-    let lower = (b - s) / a
-    let upper = (b + s) / a
+    let lower = (b - s) * terms.inverseA
+    let upper = (b + s) * terms.inverseA
     // Λ: |Pᵢ|/P₃ is the centre's screen coordinate, |p|·|rᵢ|/P₃ bounds the
     // error of Pᵢ and P₃ in screen units, and ρ/P₃ times the rows the
     // ball's angular size.
-    let scale = (pi.magnitude + (p.length + ρ) * (axis.length + r3Length)) / p3
+    let scale = (pi.magnitude + terms.extent * (axis.length + r3Length)) * terms.inverseP3
     let pad = 0x1p-30 * condition * (1 + scale + scale * scale)
     guard lower.isFinite, upper.isFinite, pad.isFinite else { return nil }
     return (lower - pad, upper + pad)
