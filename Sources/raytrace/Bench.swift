@@ -12,11 +12,15 @@ struct Bench: ParsableCommand {
     abstract: "Time the fixed benchmark workloads and print a Markdown table.",
     discussion: """
       Each workload runs as its own raytrace process: one warm-up, then \
-      --runs timed runs. 'render' is the median of the --stats render time \
-      (rendering only), 'end to end' the median wall time of the process \
-      (parse, build, render, write PNGs), 'peak memory' the largest resident \
-      set. The random scenes are written to --data on first use; run from \
-      the project's root.
+      --runs timed runs, then one run that renders --runs more times \
+      (--repeat). 'render, warm' is the median of those repeated renders \
+      (rendering only, as peers that time repeated renders in one process \
+      report it) and Mrays/s its throughput; 'render, first' the median of \
+      the timed runs' only render, cold caches and fresh buffers included; \
+      'end to end' the median wall time of the timed runs (parse, build, \
+      render, write PNGs); 'peak memory' their largest resident set. The \
+      random scenes are written to --data on first use; run from the \
+      project's root.
       """)
 
   @Option(help: "Timed runs per workload, after one warm-up.")
@@ -35,8 +39,8 @@ struct Bench: ParsableCommand {
   func run() throws {
     let benchmark = Benchmark(
       executable: currentExecutable(), dataFolder: data, runs: runs)
-    print("| workload | size | objects | threads | outputs | render (ms) | Mrays/s | end to end (s) | peak memory (MiB) |")
-    print("|---|---|---:|---:|---|---:|---:|---:|---:|")
+    print("| workload | size | objects | threads | outputs | render, warm (ms) | Mrays/s | render, first (ms) | end to end (s) | peak memory (MiB) |")
+    print("|---|---|---:|---:|---|---:|---:|---:|---:|---:|")
     var endToEnd: [Int: Double] = [:]
     for workload in Workload.standard {
       if quick && (workload.width * workload.height > 1920 * 1080 || workload.objectsDescription == "1000000") {
@@ -47,8 +51,9 @@ struct Bench: ParsableCommand {
         print(
           "| \(workload.name) | \(workload.width)×\(workload.height) | \(workload.objectsDescription) | "
             + "\(result.threads) | \(workload.outputs.names.joined(separator: " + ")) | "
-            + "\(formatted(result.renderSeconds * 1000, digits: 3)) | "
+            + "\(formatted(result.warmRenderSeconds * 1000, digits: 3)) | "
             + "\(formatted(result.megaraysPerSecond, digits: 3)) | "
+            + "\(formatted(result.renderSeconds * 1000, digits: 3)) | "
             + "\(formatted(result.endToEndSeconds, digits: 3)) | "
             + "\(formatted(Double(result.peakBytes) / 1_048_576, digits: 3)) |")
         if case .randomSpheres(let count) = workload.source, workload.threads == nil,

@@ -105,6 +105,13 @@ struct Render: ParsableCommand {
   @Flag(help: "Print what was rendered to standard error: size, rays, time, throughput, and which outputs were computed or left out.")
   var stats = false
 
+  @Option(
+    name: .customLong("repeat"),
+    help: ArgumentHelp(
+      "Render the image N more times in the same process; --stats then reports the median of those warm renders, and the first one's time (for benchmarks: peers time repeated renders). The files are written once.",
+      valueName: "n"))
+  var repeats = 0
+
   /// The checked form of the options, made in `validate()`.
   private struct Plan {
     var scenePath: String
@@ -191,6 +198,10 @@ struct Render: ParsableCommand {
       precision: precision, threads: threads ?? Renderer.availableCores)
     settings.samples = samples
     settings.filter = filter
+    guard (0...1000).contains(repeats) else {
+      throw ValidationError("--repeat must be between 0 and 1000; got \(repeats).")
+    }
+    settings.repeats = repeats
     return Plan(scenePath: scenePath, settings: settings, files: files, depthRange: range)
   }
 
@@ -295,9 +306,13 @@ struct Render: ParsableCommand {
     }
     printError("parse: \(seconds(parseSeconds))")
     printError("compile: \(seconds(report.compileSeconds))")
+    let repeats = settings.repeats
     printError(
       "render: \(seconds(report.renderSeconds)), "
-        + "\(formatted(report.megaraysPerSecond, digits: 3)) Mrays/s")
+        + "\(formatted(report.megaraysPerSecond, digits: 3)) Mrays/s"
+        + (repeats > 0
+          ? " (median of \(repeats) repeated renders; first render \(seconds(report.firstRenderSeconds)))"
+          : ""))
     printError("write: \(seconds(report.writeSeconds))")
   }
 }

@@ -63,15 +63,21 @@ public struct BenchmarkResult: Sendable {
   public var workload: Workload
   public var scenePath: String
   public var threads: Int
-  /// Median render time (the `render:` line of `--stats`) over the runs.
+  /// Median render time (the `render:` line of `--stats`) over the runs,
+  /// each the first and only render of its process.
   public var renderSeconds: Double
+  /// The median of `runs` renders repeated in one process after its first
+  /// (`--repeat`): a warm render, as peers that time repeated renders in
+  /// one process report it.
+  public var warmRenderSeconds: Double
   /// Median wall time of the whole process: parse, build, render, write.
   public var endToEndSeconds: Double
   /// The largest resident set of any run, in bytes.
   public var peakBytes: Int
 
+  /// Camera rays per second of the warm render.
   public var megaraysPerSecond: Double {
-    Double(workload.width * workload.height) / renderSeconds / 1e6
+    Double(workload.width * workload.height) / warmRenderSeconds / 1e6
   }
 }
 
@@ -112,7 +118,8 @@ public struct Benchmark {
     }
   }
 
-  /// One warm-up run (file cache, page faults), then `runs` timed ones.
+  /// One warm-up run (file cache), then `runs` timed ones, then one run
+  /// rendering `runs` more times after its first for the warm median.
   public func measure(_ workload: Workload) throws -> BenchmarkResult {
     let scene = try scenePath(for: workload)
     let threads = workload.threads ?? Renderer.availableCores
@@ -146,10 +153,14 @@ public struct Benchmark {
         wallTimes.append(outcome.wallSeconds)
       }
     }
+    let warm = try Self.spawn(executable, arguments + ["--repeat", "\(runs)"])
+    guard warm.status == 0, let warmSeconds = Self.renderSeconds(inStats: warm.stderr) else {
+      throw Failure(description: "\(executable) --repeat \(runs) failed: \(warm.stderr)")
+    }
     return BenchmarkResult(
       workload: workload, scenePath: scene, threads: threads,
-      renderSeconds: median(renderTimes), endToEndSeconds: median(wallTimes),
-      peakBytes: peak)
+      renderSeconds: median(renderTimes), warmRenderSeconds: warmSeconds,
+      endToEndSeconds: median(wallTimes), peakBytes: peak)
   }
 
   /// The seconds of a `render: 0.1234 s, 45.6 Mrays/s` line.

@@ -38,6 +38,11 @@ public struct RenderSettings: Sendable {
   public var samples: Int = 1
   /// How samples are spread over and weighted around a pixel.
   public var filter: PixelFilter = .box
+  /// Renders of the same image after the first, in the same process: the
+  /// render time reported is then their median, a warm render as peers
+  /// that time repeated renders report it (`raytrace bench`). The files
+  /// are written once.
+  public var repeats = 0
 
   public init(
     width: Int, height: Int, outputs: RenderOutputs,

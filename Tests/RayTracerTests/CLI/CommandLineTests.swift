@@ -208,6 +208,30 @@ final class CommandLineTests: XCTestCase {
     XCTAssertTrue(outcome.stderr.contains("left out: shading (lights, materials), normals, plane tests (no planes)"), outcome.stderr)
   }
 
+  /// `--repeat` renders again in the same process for a warm median: the
+  /// stats say so, and the files are those of a single render.
+  func testStats_RepeatedRendersReportTheirMedianAndWriteTheSameFiles() throws {
+    let once = try run([
+      "scenes/spheres.txt", "--size", "40", "30", "-o", folder + "/once.png",
+      "--depth", folder + "/once.npy",
+    ])
+    XCTAssertEqual(once.status, 0, once.stderr)
+    let repeated = try run([
+      "scenes/spheres.txt", "--size", "40", "30", "-o", folder + "/again.png",
+      "--depth", folder + "/again.npy", "--stats", "--repeat", "3",
+    ])
+    XCTAssertEqual(repeated.status, 0, repeated.stderr)
+    let render = repeated.stderr.split(separator: "\n").first { $0.hasPrefix("render:") }
+    XCTAssertTrue(
+      render?.contains("Mrays/s (median of 3 repeated renders; first render ") ?? false,
+      repeated.stderr)
+    XCTAssertEqual(try read("once.png"), try read("again.png"))
+    XCTAssertEqual(try read("once.npy"), try read("again.npy"))
+    let negative = try run(["scenes/spheres.txt", "--depth", folder + "/d.png", "--repeat", "-1"])
+    XCTAssertEqual(negative.status, 64)
+    XCTAssertTrue(negative.stderr.contains("--repeat must be between 0 and 1000; got -1."))
+  }
+
   func testReport_OneSceneMarkdownAndCSV() throws {
     let outcome = try run([
       "report", "scenes/single-sphere.txt", "--size", "16", "16", "--runs", "1",
