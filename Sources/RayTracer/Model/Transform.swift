@@ -77,7 +77,7 @@ extension Group {
         count(object)
       }
     }
-    result.spheres.reserveCapacity(counts.spheres)
+    result.spheres.reserveCapacityOnHugePages(counts.spheres)
     result.planes.reserveCapacity(counts.planes)
     result.triangles.reserveCapacity(counts.triangles)
     func collect(_ object: SceneObject<Scalar>, _ transform: (Matrix4<Scalar>, Matrix4<Scalar>)?) {

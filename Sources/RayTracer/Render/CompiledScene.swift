@@ -129,7 +129,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   ) -> [Result] {
     let parts = elements.count >= 1 << 16 ? 2 : 1
     return Array(unsafeUninitializedCapacity: elements.count) { results, initialized in
-      Renderer.adviseHugePages(UnsafeMutableRawBufferPointer(results))
+      Memory.adviseHugePages(UnsafeMutableRawBufferPointer(results))
       elements.withUnsafeBufferPointer { elements in
         Parallel.inParts(elements.count, parts) { _, range in
           for index in range {

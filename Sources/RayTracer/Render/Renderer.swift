@@ -119,22 +119,10 @@ public enum Renderer {
     of _: T.Type, count: Int, _ initialize: (UnsafeMutableBufferPointer<T>) -> Void
   ) -> [T] {
     Array(unsafeUninitializedCapacity: count) { buffer, initializedCount in
-      adviseHugePages(UnsafeMutableRawBufferPointer(buffer))
+      Memory.adviseHugePages(UnsafeMutableRawBufferPointer(buffer))
       initialize(buffer)
       initializedCount = count
     }
-  }
-
-  /// Asks the kernel to back `buffer` with 2 MiB pages where it can.
-  static func adviseHugePages(_ buffer: UnsafeMutableRawBufferPointer) {
-    #if os(Linux)
-    guard let base = buffer.baseAddress, buffer.count >= 1 << 21 else { return }
-    let page = 4096
-    let start = (Int(bitPattern: base) + page - 1) & ~(page - 1)
-    let end = (Int(bitPattern: base) + buffer.count) & ~(page - 1)
-    guard end > start, let pointer = UnsafeMutableRawPointer(bitPattern: start) else { return }
-    _ = madvise(pointer, end - start, MADV_HUGEPAGE)
-    #endif
   }
 
   /// Disjoint rows of these buffers are written by different threads.

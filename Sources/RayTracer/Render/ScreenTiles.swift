@@ -89,7 +89,7 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
     var covered = [Int](repeating: 0, count: parts)
     let (tilesAcross, tileWidth, tileHeight) = (tilesAcross, Self.tileWidth, Self.tileHeight)
     let boxes = [PixelBox](unsafeUninitializedCapacity: count) { boxes, initialized in
-      Renderer.adviseHugePages(UnsafeMutableRawBufferPointer(boxes))
+      Memory.adviseHugePages(UnsafeMutableRawBufferPointer(boxes))
       scene.spheres.withUnsafeBufferPointer { records in
         let shared = Shared((records, boxes))
         let results = Shared(
@@ -137,7 +137,7 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
     starts[tileCount] = total
     self.starts = starts
     entries = Array(unsafeUninitializedCapacity: total) { entries, initialized in
-      Renderer.adviseHugePages(UnsafeMutableRawBufferPointer(entries))
+      Memory.adviseHugePages(UnsafeMutableRawBufferPointer(entries))
       let shared = Shared((entries, cursors))
       boxes.withUnsafeBufferPointer { boxes in
         scene.spheres.withUnsafeBufferPointer { records in

@@ -51,7 +51,7 @@ final class SceneBytes: @unchecked Sendable {
   /// reports the error or follows the file's new length.
   private static func readInHalves(_ descriptor: Int32, size: Int) -> SceneBytes? {
     let buffer = UnsafeMutableBufferPointer<UInt8>.allocate(capacity: size)
-    Renderer.adviseHugePages(UnsafeMutableRawBufferPointer(buffer))
+    Memory.adviseHugePages(UnsafeMutableRawBufferPointer(buffer))
     let complete = UnsafeMutableBufferPointer<Bool>.allocate(capacity: 2)
     defer { complete.deallocate() }
     let shared = Shared((buffer, complete))

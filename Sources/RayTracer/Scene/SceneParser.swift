@@ -371,7 +371,7 @@ public struct SceneParser {
     var state = GroupState(declared: declared, depth: depth, material: inherited)
     let reserved = min(declared.value, objectBudget - reservedObjects)
     reservedObjects += reserved
-    state.objects.reserveCapacity(reserved)
+    state.objects.reserveCapacityOnHugePages(reserved)
     var first: SceneToken?
     if let split = speculationPoint(declared: declared.value) {
       switch try parseObjectsAlongside(&state, from: split) {
@@ -574,7 +574,7 @@ public struct SceneParser {
     }
 
     mutating func read() {
-      spheres.reserveCapacity(
+      spheres.reserveCapacityOnHugePages(
         Swift.min(
           capacity,
           (parser.tokenizer.bytes.count - stop.index) / SceneParser.minimumObjectLength))
