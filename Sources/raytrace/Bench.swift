@@ -12,7 +12,7 @@ struct Bench: ParsableCommand {
     abstract: "Time the fixed benchmark workloads and print a Markdown table.",
     discussion: """
       Each workload runs as its own raytrace process: one warm-up, then \
-      --runs timed runs, then one run that renders --runs more times \
+      --runs timed runs, then one run that renders twice --runs more times \
       (--repeat). 'render, warm' is the median of those repeated renders \
       (rendering only, as peers that time repeated renders in one process \
       report it) and Mrays/s its throughput; 'render, first' the median of \

@@ -66,9 +66,9 @@ public struct BenchmarkResult: Sendable {
   /// Median render time (the `render:` line of `--stats`) over the runs,
   /// each the first and only render of its process.
   public var renderSeconds: Double
-  /// The median of `runs` renders repeated in one process after its first
-  /// (`--repeat`): a warm render, as peers that time repeated renders in
-  /// one process report it.
+  /// The median of 2 × `runs` renders repeated in one process after its
+  /// first (`--repeat`): a warm render, as peers that time repeated renders
+  /// in one process report it.
   public var warmRenderSeconds: Double
   /// Median wall time of the whole process: parse, build, render, write.
   public var endToEndSeconds: Double
@@ -119,7 +119,7 @@ public struct Benchmark {
   }
 
   /// One warm-up run (file cache), then `runs` timed ones, then one run
-  /// rendering `runs` more times after its first for the warm median.
+  /// rendering 2 × `runs` more times after its first for the warm median.
   public func measure(_ workload: Workload) throws -> BenchmarkResult {
     let scene = try scenePath(for: workload)
     let threads = workload.threads ?? Renderer.availableCores
@@ -153,9 +153,11 @@ public struct Benchmark {
         wallTimes.append(outcome.wallSeconds)
       }
     }
-    let warm = try Self.spawn(executable, arguments + ["--repeat", "\(runs)"])
+    // Twice as many warm renders as timed runs: one process's median is
+    // noisier than a median over processes on this virtual machine.
+    let warm = try Self.spawn(executable, arguments + ["--repeat", "\(2 * runs)"])
     guard warm.status == 0, let warmSeconds = Self.renderSeconds(inStats: warm.stderr) else {
-      throw Failure(description: "\(executable) --repeat \(runs) failed: \(warm.stderr)")
+      throw Failure(description: "\(executable) --repeat \(2 * runs) failed: \(warm.stderr)")
     }
     return BenchmarkResult(
       workload: workload, scenePath: scene, threads: threads,
