@@ -66,7 +66,8 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
     return entries[starts[tile]..<starts[tile + 1]]
   }
 
-  /// Nil when the boxes sum to more than `overlapLimit` times the image.
+  /// Nil when the boxes sum to more than `overlapLimit` times the image,
+  /// or the entries to more than twice the pixels and spheres together.
   ///
   /// - Parameter camera: the camera the render builds its rays with
   ///   (`styled`), in the precision of the render's rays.
@@ -135,6 +136,11 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
       }
     }
     starts[tileCount] = total
+    // Entries are mostly one or two per sphere and one per 1,024 pixels
+    // of a big box; thin boxes spanning many tiles could make them far
+    // more, each a copy of a record. Past two per pixel and sphere the
+    // memory would outgrow the render's own buffers: the hierarchy then.
+    guard total <= 2 * (width * height + count) else { return nil }
     self.starts = starts
     entries = Array(unsafeUninitializedCapacity: total) { entries, initialized in
       Memory.adviseHugePages(UnsafeMutableRawBufferPointer(entries))

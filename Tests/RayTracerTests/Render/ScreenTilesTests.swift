@@ -267,6 +267,32 @@ final class ScreenTilesTests: XCTestCase {
     XCTAssertEqual(differences(fallback.buffers, tree.buffers), 0)
   }
 
+  /// A column one pixel wide and 4,096 high: 16 spheres filling it cover
+  /// it 16 times (under the overlap limit) but list each sphere in all
+  /// 1,024 of its tiles, more entries than twice the pixels and spheres:
+  /// declined for memory, the hierarchy renders it, same images.
+  func testManyTilesPerSphere_DeclinesToTheHierarchy() {
+    let spheres = (0..<16).map { index in
+      SceneObject<Double>.sphere(
+        Sphere(center: Vector3(0, 0, -10 - 3 * Double(index)), radius: 100 + Double(index)))
+    }
+    guard
+      let camera = PerspectiveCamera<Double>(
+        center: .zero, direction: Vector3(0, 0, -1), up: Vector3(0, 1, 0), angle: 30)
+    else { return XCTFail("camera") }
+    let scene = Scene(camera: camera, root: Group(spheres))
+    let settings = RenderSettings(width: 1, height: 4096, outputs: [.depth, .normals], threads: 2)
+    let compiled = CompiledScene<StableKernel<Double>>(scene, projectionThreshold: 0)
+    let camera64 = PerspectiveCamera<Double>(compiled.camera)
+    XCTAssertNil(ScreenTiles(compiled, camera: camera64, settings: settings))
+    let fallback = render(
+      StableKernel<Double>.self, scene, settings, .screenTiles,
+      overlapLimit: ScreenTiles<StableKernel<Double>>.overlapLimit)
+    XCTAssertEqual(fallback.search, .hierarchy)
+    let tree = render(StableKernel<Double>.self, scene, settings, .hierarchy)
+    XCTAssertEqual(differences(fallback.buffers, tree.buffers), 0)
+  }
+
   /// From 2¹⁴ spheres two threads sort them into tiles, each half of the
   /// scene on its own: each tile must still list its spheres in scene
   /// order, or coincident spheres on both sides of the split would swap
