@@ -13,9 +13,10 @@
 /// the one testing every sphere finds.
 ///
 /// Each entry carries a copy of its sphere's record: the tiles list the
-/// spheres in an order unrelated to the scene's, and reading records
-/// through indices was one cache miss per entry, half the render of a
-/// million spheres.
+/// spheres in an order unrelated to the scene's, and the load of a record
+/// through its index, missing the cache, took 56% of the tile loop's time
+/// at a million spheres (`perf annotate`); the normal of the sphere a
+/// pixel sees is computed from the same copy.
 ///
 /// The work is the sum of the boxes' areas: one box per sphere, a few
 /// pixels each for a million small spheres, where a hierarchy's walk per
