@@ -27,10 +27,9 @@ public struct RenderReport: Sendable {
   public var settings: RenderSettings
   public var spheres: Int
   public var planes: Int
-  public var usesHierarchy: Bool
-  /// How each pixel's nearest sphere was found, in words for `--stats`:
-  /// "BVH", "screen tiles", "culling per tile" or "testing each".
-  public var sphereSearch = "testing each"
+  /// How each pixel's nearest sphere was found.
+  public var sphereSearch: Renderer.SphereSearch
+  public var usesHierarchy: Bool { sphereSearch == .hierarchy }
   public var triangles: Int = 0
   public var ellipsoids: Int = 0
   public var usesTriangleHierarchy = false
@@ -140,9 +139,8 @@ public enum RenderJob {
     try AtomicFile.writeAll(encoded)
     var report = RenderReport(
       settings: settings, spheres: compiled.sphereCount, planes: compiled.planeCount,
-      usesHierarchy: search == .hierarchy, compileSeconds: compileSeconds,
+      sphereSearch: search, compileSeconds: compileSeconds,
       renderSeconds: renderSeconds, writeSeconds: clock.lap(), depthRange: usedRange)
-    report.sphereSearch = search.description
     report.firstRenderSeconds = firstRenderSeconds
     report.triangles = compiled.triangleCount
     report.ellipsoids = compiled.ellipsoidCount

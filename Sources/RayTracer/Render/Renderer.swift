@@ -22,10 +22,11 @@ public enum Renderer {
   }
 
   /// How a render found each pixel's nearest sphere.
-  enum SphereSearch: Sendable, Equatable, CustomStringConvertible {
+  public enum SphereSearch: Sendable, Equatable, CustomStringConvertible {
     case everySphere, culledPerTile, hierarchy, screenTiles
 
-    var description: String {
+    /// In words for `--stats`.
+    public var description: String {
       switch self {
       case .everySphere: "testing each"
       case .culledPerTile: "culling per tile"

@@ -45,7 +45,6 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
   }
 
   let tilesAcross: Int
-  let tilesDown: Int
   /// Tile t's entries are entries[starts[t]..<starts[t + 1]], tiles row by row.
   let starts: [Int]
   let entries: [Entry]
@@ -78,7 +77,7 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
   ) {
     let (width, height) = (settings.width, settings.height)
     tilesAcross = (width + Self.tileWidth - 1) / Self.tileWidth
-    tilesDown = (height + Self.tileHeight - 1) / Self.tileHeight
+    let tilesDown = (height + Self.tileHeight - 1) / Self.tileHeight
     let tileCount = tilesAcross * tilesDown
     let projection = ScreenProjection(
       camera: PerspectiveCamera<Double>(camera), width: width, height: height,
@@ -203,13 +202,11 @@ struct PixelBox: Sendable, Equatable {
 
 /// The pixels whose camera rays may come within a distance of a point.
 struct ScreenProjection: Sendable {
-  /// Rows of M⁻¹, M = [u, (H/W)·v, D·w]: rᵢ·d over r₃·d is d's screen x
-  /// (i = 1) or y (i = 2).
-  let r1: Vector3<Double>
-  let r2: Vector3<Double>
+  /// The last row of M⁻¹, M = [u, (H/W)·v, D·w]: rᵢ·d over r₃·d is d's
+  /// screen x (i = 1) or y (i = 2), rows 1 and 2 being `axes`.
   let r3: Vector3<Double>
   /// Per camera rather than per sphere: |r₃|, |r₃|², and for each screen
-  /// axis |rᵢ|, rᵢ·r₃ and |rᵢ × r₃|².
+  /// axis rᵢ, |rᵢ|, rᵢ·r₃ and |rᵢ × r₃|².
   let r3Length: Double
   let r3LengthSquared: Double
   let axes: (x: Axis, y: Axis)
@@ -232,14 +229,14 @@ struct ScreenProjection: Sendable {
     let aspect = Double(height) / Double(width)
     let (u, v, w) = (camera.horizontal, camera.up * aspect, camera.direction * camera.focalDistance)
     let determinant = u.dot(v.cross(w))
-    r1 = v.cross(w) / determinant
-    r2 = w.cross(u) / determinant
+    let r1 = v.cross(w) / determinant
+    let r2 = w.cross(u) / determinant
     r3 = u.cross(v) / determinant
     condition =
       Swift.max(u.length, v.length, w.length) * Swift.max(r1.length, r2.length, r3.length)
     r3Length = r3.length
     r3LengthSquared = r3.lengthSquared
-    let (r3, r1, r2) = (r3, r1, r2)
+    let r3 = r3
     func axis(_ row: Vector3<Double>) -> Axis {
       Axis(
         row: row, length: row.length, dotR3: row.dot(r3),

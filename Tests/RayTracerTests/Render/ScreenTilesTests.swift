@@ -239,58 +239,61 @@ final class ScreenTilesTests: XCTestCase {
     XCTAssertEqual(projection.pixelBox(center: Vector3(5, 0, 0.5), reach: 1), projection.whole)
   }
 
-  /// Big spheres one behind the other cover the image many times over:
-  /// the tiles decline, the render builds the hierarchy, same images.
-  func testHeavyOverlap_DeclinesToTheHierarchy() {
-    // 64 spheres, each filling the view: 64 times the image.
-    let spheres = (0..<64).map { index in
+  /// `count` spheres one behind the other on the view's axis, each at
+  /// least `radius` and filling a 30° view, seen from the origin.
+  func sphereStack(_ count: Int, radius: Double) -> Scene? {
+    let spheres = (0..<count).map { index in
       SceneObject<Double>.sphere(
-        Sphere(center: Vector3(0, 0, -10 - 3 * Double(index)), radius: 5 + Double(index)))
+        Sphere(center: Vector3(0, 0, -10 - 3 * Double(index)), radius: radius + Double(index)))
     }
     guard
       let camera = PerspectiveCamera<Double>(
         center: .zero, direction: Vector3(0, 0, -1), up: Vector3(0, 1, 0), angle: 30)
-    else { return XCTFail("camera") }
-    let scene = Scene(camera: camera, root: Group(spheres))
-    let settings = RenderSettings(width: 40, height: 30, outputs: [.depth, .normals], threads: 2)
+    else { return nil }
+    return Scene(camera: camera, root: Group(spheres))
+  }
+
+  /// The tiles decline `scene` (their coverage then, for the message),
+  /// the render builds the hierarchy instead, and the images are the
+  /// hierarchy's.
+  func assertDeclinesToTheHierarchy(
+    _ scene: Scene, _ settings: RenderSettings,
+    file: StaticString = #filePath, line: UInt = #line
+  ) {
     let compiled = CompiledScene<StableKernel<Double>>(scene, projectionThreshold: 0)
-    let camera64 = PerspectiveCamera<Double>(compiled.camera)
-    let declined = ScreenTiles(compiled, camera: camera64, settings: settings)
-    XCTAssertTrue(declined == nil, "covered \(declined?.coveredPixels ?? 0) of 1200 pixels")
-    let accepted = ScreenTiles(compiled, camera: camera64, settings: settings, overlapLimit: 1000)
-    XCTAssertEqual(accepted?.coveredPixels, 64 * 40 * 30)
+    let camera = PerspectiveCamera<Double>(compiled.camera)
+    XCTAssertNil(
+      ScreenTiles(compiled, camera: camera, settings: settings)?.coveredPixels,
+      "covered pixels of tiles that should have declined", file: file, line: line)
     let fallback = render(
       StableKernel<Double>.self, scene, settings, .screenTiles,
       overlapLimit: ScreenTiles<StableKernel<Double>>.overlapLimit)
-    XCTAssertEqual(fallback.search, .hierarchy)
+    XCTAssertEqual(fallback.search, .hierarchy, file: file, line: line)
     let tree = render(StableKernel<Double>.self, scene, settings, .hierarchy)
-    XCTAssertEqual(differences(fallback.buffers, tree.buffers), 0)
+    XCTAssertEqual(differences(fallback.buffers, tree.buffers), 0, file: file, line: line)
+  }
+
+  /// 64 spheres, each filling the view, cover a 40×30 image 64 times:
+  /// over the overlap limit. Without the limit the tiles count it exactly.
+  func testHeavyOverlap_DeclinesToTheHierarchy() throws {
+    let scene = try XCTUnwrap(sphereStack(64, radius: 5))
+    let settings = RenderSettings(width: 40, height: 30, outputs: [.depth, .normals], threads: 2)
+    assertDeclinesToTheHierarchy(scene, settings)
+    let compiled = CompiledScene<StableKernel<Double>>(scene, projectionThreshold: 0)
+    let accepted = ScreenTiles(
+      compiled, camera: PerspectiveCamera<Double>(compiled.camera), settings: settings,
+      overlapLimit: 1000)
+    XCTAssertEqual(accepted?.coveredPixels, 64 * 40 * 30)
   }
 
   /// A column one pixel wide and 4,096 high: 16 spheres filling it cover
   /// it 16 times (under the overlap limit) but list each sphere in all
   /// 1,024 of its tiles, more entries than twice the pixels and spheres:
-  /// declined for memory, the hierarchy renders it, same images.
-  func testManyTilesPerSphere_DeclinesToTheHierarchy() {
-    let spheres = (0..<16).map { index in
-      SceneObject<Double>.sphere(
-        Sphere(center: Vector3(0, 0, -10 - 3 * Double(index)), radius: 100 + Double(index)))
-    }
-    guard
-      let camera = PerspectiveCamera<Double>(
-        center: .zero, direction: Vector3(0, 0, -1), up: Vector3(0, 1, 0), angle: 30)
-    else { return XCTFail("camera") }
-    let scene = Scene(camera: camera, root: Group(spheres))
-    let settings = RenderSettings(width: 1, height: 4096, outputs: [.depth, .normals], threads: 2)
-    let compiled = CompiledScene<StableKernel<Double>>(scene, projectionThreshold: 0)
-    let camera64 = PerspectiveCamera<Double>(compiled.camera)
-    XCTAssertNil(ScreenTiles(compiled, camera: camera64, settings: settings))
-    let fallback = render(
-      StableKernel<Double>.self, scene, settings, .screenTiles,
-      overlapLimit: ScreenTiles<StableKernel<Double>>.overlapLimit)
-    XCTAssertEqual(fallback.search, .hierarchy)
-    let tree = render(StableKernel<Double>.self, scene, settings, .hierarchy)
-    XCTAssertEqual(differences(fallback.buffers, tree.buffers), 0)
+  /// declined for memory.
+  func testManyTilesPerSphere_DeclinesToTheHierarchy() throws {
+    let scene = try XCTUnwrap(sphereStack(16, radius: 100))
+    assertDeclinesToTheHierarchy(
+      scene, RenderSettings(width: 1, height: 4096, outputs: [.depth, .normals], threads: 2))
   }
 
   /// From 2¹⁴ spheres two threads sort them into tiles, each half of the
