@@ -23,8 +23,8 @@ extension ImageStyle {
     return Double(near)...Double(far)
   }
 
-  /// Course: 1 − (t − near)/(far − near), near white, misses and t beyond the
-  /// range black. Mit: (t − near)/(far − near) clamped, near black, misses
+  /// Course: 255 − ⌊255·(t − near)/(far − near)⌋, near white, misses and t
+  /// beyond the range black. Mit: (t − near)/(far − near) clamped, near black, misses
   /// black.
   public func depthImage<S: RayScalar>(
     _ buffers: RenderBuffers<S>, range given: ClosedRange<Double>?
@@ -36,15 +36,17 @@ extension ImageStyle {
     var bytes = [UInt8](repeating: 0, count: buffers.depth.count * 3)
     for (pixel, t) in buffers.depth.enumerated() where t.isFinite {
       let fraction = span > 0 ? (t - near) / span : 0
-      let value: S
+      let level: UInt8
       switch self {
       case .course:
         if range == nil || t > far { continue }
-        value = 1 - fraction
+        // The course's 255 − ⌊255·fraction⌋: inverted after truncating,
+        // one level above truncating 1 − fraction wherever 255·fraction
+        // is not a whole number.
+        level = 255 - quantize(fraction)
       case .mit:
-        value = fraction
+        level = quantize(fraction)
       }
-      let level = quantize(value)
       bytes[3 * pixel] = level
       bytes[3 * pixel + 1] = level
       bytes[3 * pixel + 2] = level

@@ -179,7 +179,8 @@ final class CameraTests: XCTestCase {
 
   // MARK: - Image conventions
 
-  /// Course: pixel centres, x = (2i + 1)/W − 1. Mit: pixel corners,
+  /// Course: x = (2i + 1)/W − 1 at pixel centres, y = 1 − (2j − 1)/H one
+  /// pixel above them (the course's own mapping). Mit: pixel corners,
   /// x = 2i/(W − 1) − 1, and 0 for W = 1. Rows run top to bottom.
   func checkScreenCoordinates<T: RayScalar>(_: T.Type) {
     let course: [T] = (0..<4).map {
@@ -193,7 +194,7 @@ final class CameraTests: XCTestCase {
       ImageStyle.course.screenY(row: $0, height: 4)
     }
     XCTAssertEqual(
-      courseRows, [0.75, 0.25, -0.25, -0.75], "\(T.self): top first")
+      courseRows, [1.25, 0.75, 0.25, -0.25], "\(T.self): top first, exact")
     let mitRows: [T] = (0..<3).map {
       ImageStyle.mit.screenY(row: $0, height: 3)
     }
@@ -201,11 +202,15 @@ final class CameraTests: XCTestCase {
     for style in ImageStyle.allCases {
       XCTAssertEqual(
         style.screenX(column: 0, width: 1) as T, 0, "\(style) W = 1")
-      XCTAssertEqual(style.screenY(row: 0, height: 1) as T, 0, "\(style) H = 1")
     }
+    XCTAssertEqual(ImageStyle.mit.screenY(row: 0, height: 1) as T, 0, "H = 1")
+    XCTAssertEqual(
+      ImageStyle.course.screenY(row: 0, height: 1) as T, 2,
+      "course H = 1: one pixel above the only row's centre")
 
     // Against the exact fractions for many sizes: one division and one
-    // subtraction of values ≤ 2, so an absolute error of at most ε.
+    // subtraction of values ≤ 2, so an absolute error of at most ε. The
+    // course's row j is its column j's x negated and moved up one pixel.
     for width in [2, 3, 5, 7, 10, 99, 640, 1001] {
       for i in 0..<width {
         let exactCourse =
@@ -219,7 +224,8 @@ final class CameraTests: XCTestCase {
         let tolerance = ReferenceScalar(T.ulpOfOne)
         for (name, got, want) in [
           ("course x", gotCourse, exactCourse), ("mit x", gotMit, exactMit),
-          ("course y", gotCourseRow, -exactCourse),
+          ("course y", gotCourseRow,
+           -exactCourse + 2 / ReferenceScalar(width)),
           ("mit y", gotMitRow, -exactMit),
         ] {
           XCTAssertLessThanOrEqual(

@@ -228,9 +228,11 @@ final class ScreenTilesTests: XCTestCase {
     let projection = ScreenProjection(camera: camera, width: 100, height: 100, style: .course)
     // Radius 0.1 at distance 10: the silhouette spans tan(asin(0.01)) =
     // 0.0100005 either side of the centre, 0.500025 pixel at 50 pixels per
-    // screen unit, about the centre at column 49.5: columns 49 and 50.
+    // screen unit, about the centre at column 49.5: columns 49 and 50; the
+    // course's rows sample one pixel higher, so y = 0 is row 50.5: rows 50
+    // and 51.
     let box = projection.pixelBox(center: Vector3(0, 0, -10), reach: 0.1)
-    XCTAssertEqual(box, PixelBox(firstColumn: 49, lastColumn: 50, firstRow: 49, lastRow: 50))
+    XCTAssertEqual(box, PixelBox(firstColumn: 49, lastColumn: 50, firstRow: 50, lastRow: 51))
     // 0.49 pixel either side of 49.5 holds no pixel centre: no pixel.
     let smaller = projection.pixelBox(center: Vector3(0, 0, -10), reach: 0.098)
     XCTAssertTrue(smaller.isEmpty, "\(smaller)")

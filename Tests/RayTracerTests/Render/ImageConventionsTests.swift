@@ -1,0 +1,43 @@
+import XCTest
+
+@testable import RayTracer
+
+/// How depth becomes 8-bit levels in each style.
+final class ImageConventionsTests: XCTestCase {
+  /// The course's depth level is 255 − ⌊255·f⌋ with f = (t − near)/(far −
+  /// near): inverted after truncation, so wherever 255·f is not whole it is
+  /// one level above truncating 1 − f (which the style once did, and which
+  /// this test tells apart at every level).
+  func testDepthImage_CourseInvertsAfterTruncating() {
+    // near 1, far 1 + 255/16: t = 1 + (k + 0.5)/16 (exact) gives 255·f
+    // within a rounding or two of k + 0.5, far from either whole number.
+    var depth: [Double] = [1, 1 + 255.0 / 16]
+    for k in 0..<255 { depth.append(1 + (Double(k) + 0.5) / 16) }
+    depth += [.infinity, 50]  // a miss; a hit past the course's cutoff
+    let buffers = RenderBuffers<Double>(
+      width: depth.count, height: 1, depth: depth)
+    let image = ImageStyle.course.depthImage(buffers, range: nil)
+    let levels = (0..<depth.count).map { image.bytes[3 * $0] }
+    XCTAssertEqual(levels[0], 255, "nearest hit white")
+    XCTAssertEqual(levels[1], 0, "farthest hit black")
+    for k in 0..<255 {
+      XCTAssertEqual(
+        levels[2 + k], UInt8(255 - k), "255·f = \(k).5: 255 − \(k)")
+      XCTAssertNotEqual(
+        levels[2 + k], ImageStyle.course.quantize(1 - (Double(k) + 0.5) / 255),
+        "one level above truncating 1 − f at \(k).5")
+    }
+    XCTAssertEqual(levels[257], 0, "miss black")
+    XCTAssertEqual(levels[258], 0, "beyond the cutoff black")
+  }
+
+  /// The mit style rounds f itself over the range it is given, clamped.
+  func testDepthImage_MitRoundsTheGivenRange() {
+    let buffers = RenderBuffers<Double>(
+      width: 4, height: 1, depth: [8, 13, 18, 30])
+    let image = ImageStyle.mit.depthImage(buffers, range: 8...18)
+    XCTAssertEqual(
+      (0..<4).map { image.bytes[3 * $0] }, [0, 128, 255, 255],
+      "near black, 127.5 rounds up, far and beyond white")
+  }
+}
