@@ -5,6 +5,9 @@ public struct Material<Scalar: RayScalar>: Hashable, Sendable {
   public var diffuse: RGB<Scalar>
   public var specular: RGB<Scalar>
   public var shininess: Scalar
+  /// The texture file a textured material names, resolved against the
+  /// scene's folder; read only when a shaded image is rendered.
+  public var texturePath: String?
 
   /// White and matte: the course's default when a scene has no materials.
   public static var defaultWhite: Material {
@@ -12,17 +15,19 @@ public struct Material<Scalar: RayScalar>: Hashable, Sendable {
   }
 
   public init(
-    diffuse: RGB<Scalar>, specular: RGB<Scalar> = .zero, shininess: Scalar = 0
+    diffuse: RGB<Scalar>, specular: RGB<Scalar> = .zero, shininess: Scalar = 0,
+    texturePath: String? = nil
   ) {
     self.diffuse = diffuse
     self.specular = specular
     self.shininess = shininess
+    self.texturePath = texturePath
   }
 
   public init<Other: RayScalar>(_ other: Material<Other>) {
     self.init(
       diffuse: Vector3(other.diffuse), specular: Vector3(other.specular),
-      shininess: Scalar(other.shininess))
+      shininess: Scalar(other.shininess), texturePath: other.texturePath)
   }
 
   /// ambient·kd + Σ lights [kd·max(0, n·l) + ks·max(0, −d·r)^shininess]·light,
