@@ -1,0 +1,161 @@
+/// Pixels from `firstColumn` to `lastColumn` and `firstRow` to `lastRow`,
+/// ends included; empty when first > last.
+struct PixelBox: Sendable, Equatable {
+  var firstColumn: Int32
+  var lastColumn: Int32
+  var firstRow: Int32
+  var lastRow: Int32
+
+  static let empty = PixelBox(firstColumn: 0, lastColumn: -1, firstRow: 0, lastRow: -1)
+
+  var isEmpty: Bool { firstColumn > lastColumn || firstRow > lastRow }
+  /// Only for boxes that are not empty.
+  var columns: ClosedRange<Int> { Int(firstColumn)...Int(lastColumn) }
+  var rows: ClosedRange<Int> { Int(firstRow)...Int(lastRow) }
+  var area: Int { Int(lastColumn - firstColumn + 1) * Int(lastRow - firstRow + 1) }
+}
+
+/// The pixels whose camera rays may come within a distance of a point.
+struct ScreenProjection: Sendable {
+  /// The last row of M⁻¹, M = [u, (H/W)·v, D·w]: rᵢ·d over r₃·d is d's
+  /// screen x (i = 1) or y (i = 2), rows 1 and 2 being `axes`.
+  let r3: Vector3<Double>
+  /// Per camera rather than per sphere: |r₃|, |r₃|², and for each screen
+  /// axis rᵢ, |rᵢ|, rᵢ·r₃ and |rᵢ × r₃|².
+  let r3Length: Double
+  let r3LengthSquared: Double
+  let axes: (x: Axis, y: Axis)
+  /// A bound on how much the computed rows and products can err, relative
+  /// to their sizes: max|column of M|·max|rᵢ| ε-units become this slack.
+  let condition: Double
+  let width: Int
+  let height: Int
+  let style: ImageStyle
+  let whole: PixelBox
+
+  struct Axis: Sendable {
+    let row: Vector3<Double>
+    let length: Double
+    let dotR3: Double
+    let crossR3Squared: Double
+  }
+
+  init(camera: PerspectiveCamera<Double>, width: Int, height: Int, style: ImageStyle) {
+    let aspect = Double(height) / Double(width)
+    let (u, v, w) = (camera.horizontal, camera.up * aspect, camera.direction * camera.focalDistance)
+    let determinant = u.dot(v.cross(w))
+    let r1 = v.cross(w) / determinant
+    let r2 = w.cross(u) / determinant
+    r3 = u.cross(v) / determinant
+    condition =
+      Swift.max(u.length, v.length, w.length) * Swift.max(r1.length, r2.length, r3.length)
+    r3Length = r3.length
+    r3LengthSquared = r3.lengthSquared
+    let r3 = r3
+    func axis(_ row: Vector3<Double>) -> Axis {
+      Axis(
+        row: row, length: row.length, dotR3: row.dot(r3),
+        crossR3Squared: row.cross(r3).lengthSquared)
+    }
+    axes = (axis(r1), axis(r2))
+    self.width = width
+    self.height = height
+    self.style = style
+    whole = PixelBox(
+      firstColumn: 0, lastColumn: Int32(width - 1), firstRow: 0, lastRow: Int32(height - 1))
+  }
+
+  /// The pixels whose rays may pass within `reach` of `center` (relative
+  /// to the eye) in front of the eye: every pixel when the ball comes
+  /// near the plane through the eye parallel to the screen, where its
+  /// silhouette has no bounded box, or when anything is not finite.
+  func pixelBox(center p: Vector3<Double>, reach ρ: Double) -> PixelBox {
+    let p3 = r3.dot(p)
+    let n3 = r3Length
+    // A hit point h = t·d has r₃·h > 0 and |h − p| ≤ ρ, so r₃·p > −ρ|r₃|.
+    if p3 <= -ρ * n3 * (1 + 0x1p-20) { return .empty }
+    // With r₃·p ≥ 2ρ|r₃| the ball is at most 30° wide seen from that
+    // plane, A below stays within [3/4, 1]·(r₃·p)², and every quantity is
+    // a sum of terms of known size (`Λ`).
+    guard p3 >= 2 * ρ * n3, p3.isFinite, ρ.isFinite, p.isFinite else { return whole }
+    // Shared by both axes: A, 1/A, 1/P₃ and |p| + ρ (one division each
+    // rather than one per axis; the extra rounding is far inside the pad).
+    let shared = IntervalTerms(
+      p3: p3, ρ: ρ, a: p3 * p3 - ρ * ρ * r3LengthSquared, extent: p.length + ρ)
+    guard let x = screenInterval(axes.x, p, shared),
+      let y = screenInterval(axes.y, p, shared)
+    else { return whole }
+    // The pixels whose own screen coordinates lie in the intervals. Those
+    // were rounded in the render's precision (`screenX`: a division and a
+    // subtraction, within 2 ε of the exact value on [−1, 1]); 4 ε of the
+    // widest precision a render takes (Float), times the pixels per
+    // screen unit, covers that with room for this Double arithmetic.
+    let columns = (
+      style.column(screenX: x.lower, width: width), style.column(screenX: x.upper, width: width)
+    )
+    let rows = (
+      style.row(screenY: y.upper, height: height), style.row(screenY: y.lower, height: height)
+    )
+    let padColumns = 4 * Double(Float.ulpOfOne) * Double(width) + 0x1p-30
+    let padRows = 4 * Double(Float.ulpOfOne) * Double(height) + 0x1p-30
+    func clamped(_ value: Double, _ limit: Int) -> Int32 {
+      Int32(Swift.min(Swift.max(value, -1), Double(limit)))
+    }
+    let box = PixelBox(
+      firstColumn: Swift.max(0, clamped((columns.0 - padColumns).rounded(.up), width)),
+      lastColumn: Swift.min(Int32(width - 1), clamped((columns.1 + padColumns).rounded(.down), width)),
+      firstRow: Swift.max(0, clamped((rows.0 - padRows).rounded(.up), height)),
+      lastRow: Swift.min(Int32(height - 1), clamped((rows.1 + padRows).rounded(.down), height)))
+    return box.isEmpty ? .empty : box
+  }
+
+  /// The screen coordinates k = rᵢ·d / r₃·d of the directions d within the
+  /// ball: the planes (rᵢ − k r₃)·d = 0 tangent to it, where
+  /// (rᵢ·p − k r₃·p)² = ρ²|rᵢ − k r₃|², a quadratic A k² − 2B k + C = 0 with
+  /// A = P₃² − ρ²|r₃|², B = PᵢP₃ − ρ² rᵢ·r₃ and, by Lagrange's identity,
+  /// B² − AC = ρ²(|P₃rᵢ − Pᵢr₃|² − ρ²|rᵢ × r₃|²): the P²ᵢP²₃ that cancel in
+  /// the textbook discriminant never appear, so a sphere a billionth of
+  /// its distance wide keeps its digits.
+  ///
+  /// Rounding: each quantity below is a sum of a few products of terms no
+  /// larger than Λ·A (Λ defined below, in units of the screen), carrying
+  /// at most a few dozen ε of Double each, and A ≥ 3/4·P₃² bounds the
+  /// division. The interval is widened by 2⁻³⁰·Λ·condition, about 2²²
+  /// times that bound; on screen that is a few billionths of the image.
+  struct IntervalTerms {
+    let p3: Double
+    let ρ: Double
+    let a: Double
+    let inverseA: Double
+    let inverseP3: Double
+    let extent: Double
+
+    init(p3: Double, ρ: Double, a: Double, extent: Double) {
+      (self.p3, self.ρ, self.a, self.extent) = (p3, ρ, a, extent)
+      inverseA = 1 / a
+      inverseP3 = 1 / p3
+    }
+  }
+
+  @inline(__always)
+  private func screenInterval(
+    _ axis: Axis, _ p: Vector3<Double>, _ terms: IntervalTerms
+  ) -> (lower: Double, upper: Double)? {
+    let (p3, ρ) = (terms.p3, terms.ρ)
+    let ri = axis.row
+    let pi = ri.dot(p)
+    let b = pi * p3 - ρ * ρ * axis.dotR3
+    let tangent = ri * p3 - r3 * pi
+    let discriminant = Swift.max(0, tangent.lengthSquared - ρ * ρ * axis.crossR3Squared)
+    let s = ρ * discriminant.squareRoot()
+    let lower = (b - s) * terms.inverseA
+    let upper = (b + s) * terms.inverseA
+    // Λ: |Pᵢ|/P₃ is the centre's screen coordinate, |p|·|rᵢ|/P₃ bounds the
+    // error of Pᵢ and P₃ in screen units, and ρ/P₃ times the rows the
+    // ball's angular size.
+    let scale = (pi.magnitude + terms.extent * (axis.length + r3Length)) * terms.inverseP3
+    let pad = 0x1p-30 * condition * (1 + scale + scale * scale)
+    guard lower.isFinite, upper.isFinite, pad.isFinite else { return nil }
+    return (lower - pad, upper + pad)
+  }
+}
