@@ -249,7 +249,9 @@ struct Render: ParsableCommand {
     let scene: Scene
     var clock = Stopwatch()
     do {
-      scene = try SceneParser.parse(contentsOf: plan.scenePath)
+      scene = try SceneReader.read(
+        contentsOf: plan.scenePath,
+        options: SceneOptions(style: plan.settings.style))
     } catch {
       printError(error.description)
       throw ExitCode.failure
@@ -276,6 +278,10 @@ struct Render: ParsableCommand {
       report = try RenderJob.run(
         scene: scene, settings: plan.settings, files: plan.files,
         depthRange: plan.depthRange, png: png, progress: progress)
+    } catch let error as SceneError {
+      // A texture that cannot be read, named as a scene error is.
+      printError(error.description)
+      throw ExitCode.failure
     } catch {
       printError("raytrace: error: \(error)")
       throw ExitCode.failure
@@ -307,6 +313,12 @@ struct Render: ParsableCommand {
     printError(
       "outputs: \(settings.outputs.names.joined(separator: ", "))"
         + "; left out: \(report.leftOut.isEmpty ? "nothing" : report.leftOut.joined(separator: ", "))")
+    if report.texturedMaterials > 0 {
+      printError(
+        report.texturesRead > 0
+          ? "textures: \(report.texturesRead) read for the shaded image"
+          : "textures: none read (no shaded image is requested)")
+    }
     if let range = report.depthRange {
       printError("depth range: \(range.lowerBound) to \(range.upperBound)")
     }

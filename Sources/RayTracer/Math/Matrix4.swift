@@ -235,6 +235,33 @@ extension Matrix4 {
       0, 0, 0, 1)
   }
 
+  /// Rotation by `degrees` about `axis` (any non-zero length; it is
+  /// normalised), right-handed: looking down the axis towards the origin,
+  /// the rotation is counter-clockwise. Rows c·I + (1 − c)·a·aᵀ + s·[a]×
+  /// (Rodrigues): about the x, y and z axes, `rotationX`, `Y` and `Z` to
+  /// within an ulp of 1 on the diagonal.
+  /// A zero or non-finite axis gives NaN entries.
+  public static func rotation(
+    axis: Vector3<Scalar>, degrees: Scalar
+  ) -> Matrix4 {
+    // Scaled to a largest component of 1 first: no square overflows or
+    // underflows, whatever the axis's length.
+    let largest = axis.maxMagnitude
+    guard largest > 0, largest.isFinite else {
+      return Matrix4(
+        .nan, .nan, .nan, 0, .nan, .nan, .nan, 0, .nan, .nan, .nan, 0,
+        0, 0, 0, 1)
+    }
+    let a = (axis / largest).normalized()
+    let (c, s) = cosineAndSine(degrees: degrees)
+    let k = 1 - c
+    return Matrix4(
+      c + k * a.x * a.x, k * a.x * a.y - s * a.z, k * a.x * a.z + s * a.y, 0,
+      k * a.y * a.x + s * a.z, c + k * a.y * a.y, k * a.y * a.z - s * a.x, 0,
+      k * a.z * a.x - s * a.y, k * a.z * a.y + s * a.x, c + k * a.z * a.z, 0,
+      0, 0, 0, 1)
+  }
+
   /// cos and sin of an angle in degrees, with the angle reduced exactly
   /// before converting to radians: r = degrees mod 360 (`remainder` is
   /// exact), then r = 90·q + ρ with |ρ| ≤ 45 (exact: the subtraction's
@@ -491,6 +518,16 @@ extension Matrix4 {
   /// 10¹⁵⁰ (Double) or 10¹⁹ (Float) overflow them.
   @inlinable
   public func transformNormal(_ n: Vector3<Scalar>) -> Vector3<Scalar> {
+    cofactorNormal(n).normalized()
+  }
+
+  /// sign(det L)·cof(L)·n, not normalised: `transformNormal` before its
+  /// normalisation. Every normal is scaled by the same |det L|, so vertex
+  /// normals moved this way interpolate, then normalise, to the transform
+  /// of the interpolated normal (as a hit's normal is moved in the course:
+  /// interpolate in object space, then transform).
+  @inlinable
+  public func cofactorNormal(_ n: Vector3<Scalar>) -> Vector3<Scalar> {
     let r0 = Vector3(m00, m01, m02)
     let r1 = Vector3(m10, m11, m12)
     let r2 = Vector3(m20, m21, m22)
@@ -498,7 +535,7 @@ extension Matrix4 {
     let determinant = r0.dot(c0)
     let sign: Scalar = determinant < 0 ? -1 : 1
     let cofactor = Vector3(c0.dot(n), r2.cross(r0).dot(n), r0.cross(r1).dot(n))
-    return (cofactor * sign).normalized()
+    return cofactor * sign
   }
 }
 

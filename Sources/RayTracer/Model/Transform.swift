@@ -115,9 +115,12 @@ extension Group {
         moved.v1 = matrix.transformPoint(triangle.v1)
         moved.v2 = matrix.transformPoint(triangle.v2)
         if let normals = triangle.vertexNormals {
+          // Not normalised one by one: the hit's interpolation then gives
+          // the transform of the object's interpolated normal.
           moved.vertexNormals = Triangle.VertexNormals(
-            matrix.transformNormal(normals.n0), matrix.transformNormal(normals.n1),
-            matrix.transformNormal(normals.n2))
+            matrix.cofactorNormal(normals.n0),
+            matrix.cofactorNormal(normals.n1),
+            matrix.cofactorNormal(normals.n2))
         }
         result.triangles.append(moved)
       case .group(let group):

@@ -13,6 +13,8 @@ public struct Triangle<Scalar: RayScalar>: Hashable, Sendable {
   public var v2: Vector3<Scalar>
   /// Normals at v0, v1 and v2, or nil for flat shading.
   public var vertexNormals: VertexNormals?
+  /// Texture coordinates (u, v) at v0, v1 and v2, or nil.
+  public var textureCoordinates: TextureCoordinates?
   public var materialIndex: Int
 
   /// Normals at a triangle's vertices, in the order of its vertices. They
@@ -31,14 +33,37 @@ public struct Triangle<Scalar: RayScalar>: Hashable, Sendable {
     }
   }
 
+  /// Texture coordinates at a triangle's vertices, in their order.
+  public struct TextureCoordinates: Hashable, Sendable {
+    public var t0: TextureCoordinate<Scalar>
+    public var t1: TextureCoordinate<Scalar>
+    public var t2: TextureCoordinate<Scalar>
+
+    public init(_ t0: TextureCoordinate<Scalar>, _ t1: TextureCoordinate<Scalar>, _ t2: TextureCoordinate<Scalar>)
+    {
+      self.t0 = t0
+      self.t1 = t1
+      self.t2 = t2
+    }
+
+    /// The coordinates at barycentrics (u, v, w) of v0, v1 and v2.
+    @inlinable
+    public func at(u: Scalar, v: Scalar, w: Scalar) -> TextureCoordinate<Scalar> {
+      TextureCoordinate(
+        t0.u * u + t1.u * v + t2.u * w, t0.v * u + t1.v * v + t2.v * w)
+    }
+  }
+
   public init(
     _ v0: Vector3<Scalar>, _ v1: Vector3<Scalar>, _ v2: Vector3<Scalar>,
-    vertexNormals: VertexNormals? = nil, materialIndex: Int = 0
+    vertexNormals: VertexNormals? = nil,
+    textureCoordinates: TextureCoordinates? = nil, materialIndex: Int = 0
   ) {
     self.v0 = v0
     self.v1 = v1
     self.v2 = v2
     self.vertexNormals = vertexNormals
+    self.textureCoordinates = textureCoordinates
     self.materialIndex = materialIndex
   }
 
@@ -49,6 +74,10 @@ public struct Triangle<Scalar: RayScalar>: Hashable, Sendable {
       Vector3(other.v0), Vector3(other.v1), Vector3(other.v2),
       vertexNormals: other.vertexNormals.map {
         VertexNormals(Vector3($0.n0), Vector3($0.n1), Vector3($0.n2))
+      },
+      textureCoordinates: other.textureCoordinates.map {
+        TextureCoordinates(TextureCoordinate($0.t0), TextureCoordinate($0.t1),
+              TextureCoordinate($0.t2))
       },
       materialIndex: other.materialIndex)
   }
@@ -116,7 +145,9 @@ extension Triangle: Intersectable {
     else { return nil }
     let normal = shadingNormal(
       u: hit.u, v: hit.v, w: hit.w, geometric: geometric)
-    return Hit(t: hit.t, normal: normal, materialIndex: materialIndex)
+    return Hit(
+      t: hit.t, normal: normal, materialIndex: materialIndex,
+      textureCoordinate: textureCoordinates?.at(u: hit.u, v: hit.v, w: hit.w))
   }
 
   /// Whether the triangle is hit in (tMin, tMax); no normal is computed

@@ -28,12 +28,17 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// Triangles in the kernel's frame, in hierarchy order when there is one.
   var triangles: [TriangleRecord<Scalar>] = []
   var triangleMaterials: [Int32] = []
+  /// Per triangle, its texture coordinates: only for textured renders.
+  var triangleTextureCoordinates: [Triangle<Scalar>.TextureCoordinates?] = []
   var triangleHierarchy: BoundingVolumeHierarchy<Scalar>?
   var wideTriangleHierarchy: WideHierarchy<Scalar>?
   /// Spheres under transforms that are not similarities.
   var ellipsoids: [EllipsoidRecord<Kernel>] = []
   var ellipsoidMaterials: [Int32] = []
   public let materials: [Material<Scalar>]
+  /// Per material, its texture; empty when no material has one or the
+  /// render shades nothing.
+  public let textures: [Texture?]
   public let lights: [Light<Scalar>]
   public let ambient: RGB<Scalar>
   public let background: RGB<Scalar>
@@ -51,8 +56,12 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   ///     in scene order for `ScreenTiles`, with neither a BVH nor culling
   ///     data; only for single-sample renders, whose rays all pass through
   ///     pixel centres.
+  ///   - textures: per material, the texture a shaded render maps onto
+  ///     triangles with texture coordinates (see `TextureLoader`); empty
+  ///     for untextured scenes and for renders without a shaded image.
   public init(
     _ scene: Scene, kernel: Kernel.Type = Kernel.self,
+    textures: [Texture?] = [],
     hierarchyThreshold: Int = BoundingVolumeHierarchy<Scalar>.defaultThreshold,
     projectionThreshold: Int = .max
   ) {
@@ -67,6 +76,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     planes = planeList.map { Kernel.makePlane($0, eye: eyeDouble) }
     planeMaterials = planeList.map { Int32(truncatingIfNeeded: $0.materialIndex) }
     materials = scene.materials.map(Material.init)
+    self.textures = textures.contains { $0 != nil } ? textures : []
     lights = scene.lights.map(Light.init)
     ambient = Vector3(scene.ambient)
     background = Vector3(scene.background)
@@ -164,6 +174,14 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       guard record.geometricNormal != nil else { continue }
       triangles.append(record)
       triangleMaterials.append(Int32(truncatingIfNeeded: triangle.materialIndex))
+      if !textures.isEmpty {
+        triangleTextureCoordinates.append(
+          triangle.textureCoordinates.map {
+            Triangle<Scalar>.TextureCoordinates(
+              TextureCoordinate($0.t0), TextureCoordinate($0.t1),
+              TextureCoordinate($0.t2))
+          })
+      }
     }
     if triangles.count >= hierarchyThreshold {
       let boxes = triangles.map { record in
@@ -184,6 +202,11 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       let bvh = BoundingVolumeHierarchy<Scalar>(boxes: boxes)
       triangles = bvh.order.map { triangles[Int($0)] }
       triangleMaterials = bvh.order.map { triangleMaterials[Int($0)] }
+      if !triangleTextureCoordinates.isEmpty {
+        triangleTextureCoordinates = bvh.order.map {
+          triangleTextureCoordinates[Int($0)]
+        }
+      }
       triangleHierarchy = bvh
       wideTriangleHierarchy = WideHierarchy(bvh, rayOrigin: Kernel.frameOrigin(eye: eye))
     }
@@ -387,6 +410,23 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     }
     return materials[Int(index)]
   }
+
+  /// The material shaded at the hit: a textured material's diffuse colour
+  /// is the texel at the hit's texture coordinates on triangles that have
+  /// them; every other object keeps the material's own colour.
+  func shadingMaterial(
+    of what: Nearest, _ ray: CameraRay<Scalar>
+  ) -> Material<Scalar> {
+    var material = material(of: what)
+    guard !textures.isEmpty, case .triangle(let index) = what,
+      let texture = textures[Int(triangleMaterials[index])],
+      let coordinates = triangleTextureCoordinates[index],
+      let weights = triangles[index].barycentrics(of: ray)
+    else { return material }
+    material.diffuse = texture.color(
+      at: coordinates.at(u: weights.u, v: weights.v, w: weights.w))
+    return material
+  }
 }
 
 /// A triangle as the loop tests it: vertices in the kernel's frame.
@@ -407,6 +447,17 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
     self.v2 = v2
     self.normals = normals
     geometricNormal = Triangle(v0, v1, v2).geometricNormal
+  }
+
+  /// The barycentric weights of v0, v1, v2 where `ray` hits (the same
+  /// computation as the hit's, so the same values), or nil on a miss.
+  func barycentrics(
+    of ray: CameraRay<Scalar>
+  ) -> (u: Scalar, v: Scalar, w: Scalar)? {
+    let prepared = WatertightRay(
+      Ray(origin: ray.origin, direction: ray.direction))
+    guard let hit = intersect(prepared, before: .infinity) else { return nil }
+    return (hit.u, hit.v, hit.w)
   }
 
   @inline(__always)

@@ -51,6 +51,10 @@ public struct RenderReport: Sendable {
   public var megaraysPerSecond: Double { Double(rays) / renderSeconds / 1e6 }
   /// The depth range a depth image used, if one was written.
   public var depthRange: ClosedRange<Double>?
+  /// Materials with a texture, and the textures read for them (none unless
+  /// a shaded image was rendered).
+  public var texturedMaterials = 0
+  public var texturesRead = 0
 
   /// What the requested outputs did not need, and so was not computed.
   public var leftOut: [String] {
@@ -59,6 +63,9 @@ public struct RenderReport: Sendable {
     if !outputs.contains(.shaded) { parts.append("shading (lights, materials)") }
     if !outputs.needsNormals { parts.append("normals") }
     if !outputs.contains(.depth) { parts.append("depth buffer") }
+    if texturedMaterials > 0 && texturesRead == 0 {
+      parts.append("textures (not read: no shaded image)")
+    }
     if planes == 0 { parts.append("plane tests (no planes)") }
     return parts
   }
@@ -67,33 +74,67 @@ public struct RenderReport: Sendable {
 /// A whole render: compile the scene for the chosen precision and method,
 /// render the requested outputs, and write each file whole or not at all.
 public enum RenderJob {
+  /// Renders `scene` into `files`. Textures are read here, and only when a
+  /// shaded image is among the files (a `SceneError` naming the texture
+  /// when one cannot be read), unless `textures` gives them already.
   public static func run(
     scene: Scene, settings requested: RenderSettings, files: [OutputFile],
     depthRange: ClosedRange<Double>? = nil, png: PNGOptions = .default,
+    textures given: [Texture?]? = nil,
     progress: (@Sendable (Int) -> Void)? = nil
   ) throws -> RenderReport {
     var settings = requested
     settings.outputs = files.reduce(into: []) { $0.formUnion($1.kind) }
+    let textures =
+      settings.outputs.contains(.shaded)
+      ? try given ?? TextureLoader.load(for: scene) : []
+    var report = try run(
+      scene, textures, settings, files, depthRange, png, progress)
+    report.texturedMaterials = scene.materials.count {
+      $0.texturePath != nil
+    }
+    report.texturesRead = Set(
+      zip(scene.materials, textures).compactMap { material, texture in
+        texture == nil ? nil : material.texturePath
+      }
+    ).count
+    return report
+  }
+
+  private static func run(
+    _ scene: Scene, _ textures: [Texture?], _ settings: RenderSettings,
+    _ files: [OutputFile], _ depthRange: ClosedRange<Double>?,
+    _ png: PNGOptions, _ progress: (@Sendable (Int) -> Void)?
+  ) throws -> RenderReport {
     switch (settings.precision, settings.method) {
     case (.float, .naive):
-      return try run(NaiveKernel<Float>.self, scene, settings, files, depthRange, png, progress)
+      return try run(
+        NaiveKernel<Float>.self, scene, textures, settings, files, depthRange, png,
+        progress)
     case (.float, .stable):
-      return try run(StableKernel<Float>.self, scene, settings, files, depthRange, png, progress)
+      return try run(
+        StableKernel<Float>.self, scene, textures, settings, files, depthRange, png,
+        progress)
     case (.double, .naive):
-      return try run(NaiveKernel<Double>.self, scene, settings, files, depthRange, png, progress)
+      return try run(
+        NaiveKernel<Double>.self, scene, textures, settings, files, depthRange, png,
+        progress)
     case (.double, .stable):
-      return try run(StableKernel<Double>.self, scene, settings, files, depthRange, png, progress)
+      return try run(
+        StableKernel<Double>.self, scene, textures, settings, files, depthRange, png,
+        progress)
     }
   }
 
   private static func run<Kernel: IntersectionKernel>(
-    _ kernel: Kernel.Type, _ scene: Scene, _ settings: RenderSettings,
+    _ kernel: Kernel.Type, _ scene: Scene, _ textures: [Texture?],
+    _ settings: RenderSettings,
     _ files: [OutputFile], _ depthRange: ClosedRange<Double>?, _ png: PNGOptions,
     _ progress: (@Sendable (Int) -> Void)?
   ) throws -> RenderReport {
     var clock = Stopwatch()
     let compiled = CompiledScene<Kernel>(
-      scene,
+      scene, textures: textures,
       hierarchyThreshold: settings.hierarchyThreshold
         ?? (settings.samples == 1
           ? CompiledScene<Kernel>.tileCulledThreshold

@@ -327,7 +327,7 @@ public enum Renderer {
     ray: CameraRay<Kernel.Scalar>, normal: Vector3<Kernel.Scalar>,
     scene: CompiledScene<Kernel>, attenuate: Bool
   ) -> RGB<Kernel.Scalar> {
-    scene.material(of: hit.what).shade(
+    scene.shadingMaterial(of: hit.what, ray).shade(
       point: scene.eye + ray.direction * hit.t, normal: normal,
       viewDirection: ray.direction, ambient: scene.ambient,
       lights: scene.lights, attenuate: attenuate)

@@ -4,7 +4,8 @@
 ///     v x y z [w]          a vertex (w, a curve weight, is checked, unused)
 ///     v x y z r g b        a vertex with a colour (checked, unused)
 ///     vn x y z             a normal, for smooth shading
-///     vt u [v [w]]         a texture coordinate (checked, unused)
+///     vt u [v [w]]         a texture coordinate (v defaults to 0; w is
+///                          checked, unused)
 ///     f v1 v2 v3 …         a polygon, each vertex v, v/vt, v//vn or v/vt/vn
 ///     o g s mg usemtl mtllib usemap maplib lod bevel c_interp d_interp
 ///     ctech stech shadow_obj trace_obj   (ignored: they name, group or
@@ -22,6 +23,13 @@
 /// coordinates or none), so a face is never half smooth-shaded; different
 /// faces may use different forms. A line ending in `\` continues on the
 /// next line. Empty files give an empty mesh.
+///
+/// `a/b` is read as the Swift course's loader reads it: b is a texture
+/// coordinate when the file has defined `vt` lines before the face, and a
+/// normal when it has defined only `vn` lines (the course's files write
+/// normals that way). Where a file has both, `OBJMesh.
+/// readingTextureIndicesAsNormals()` gives the loader's reading for a
+/// material without a texture.
 ///
 /// Every problem is a `SceneError` at its byte's line and column, with a
 /// one-line message; no input traps, including bytes that are not UTF-8,
@@ -62,95 +70,6 @@ public enum OBJReader {
   }
 }
 
-/// A triangulated OBJ mesh, in the file's Double precision.
-public struct OBJMesh: Hashable, Sendable {
-  /// The `v` lines in order; x, y and z only.
-  public var vertices: [Vector3<Double>]
-  /// The `vn` lines in order, as written (not normalised; may be zero).
-  public var normals: [Vector3<Double>]
-  /// The faces, fanned into triangles, in file order.
-  public var triangles: [OBJTriangle]
-
-  public init(
-    vertices: [Vector3<Double>] = [], normals: [Vector3<Double>] = [],
-    triangles: [OBJTriangle] = []
-  ) {
-    self.vertices = vertices
-    self.normals = normals
-    self.triangles = triangles
-  }
-
-  /// The mesh as model triangles in precision S, with vertex normals where
-  /// the face gave them. Degenerate triangles (a repeated vertex, a
-  /// zero-area face) are kept: they are never hit, and dropping them is the
-  /// compiled scene's choice.
-  /// The mesh with a normal per vertex where it has none: the mean of the
-  /// unit normals of the faces around the vertex, normalised. This is the
-  /// smooth shading the course's images show for meshes without `vn`
-  /// (measured on its bunny: every pixel of the normals image within 2
-  /// levels, against 78% when faces weigh by their area).
-  public func smoothed() -> OBJMesh {
-    guard normals.isEmpty, !triangles.isEmpty else { return self }
-    var sums = [Vector3<Double>](repeating: .zero, count: vertices.count)
-    for face in triangles {
-      let (a, b, c) = (
-        Int(face.vertexIndices.x), Int(face.vertexIndices.y), Int(face.vertexIndices.z)
-      )
-      let cross = (vertices[b] - vertices[a]).cross(vertices[c] - vertices[a])
-      guard cross.maxMagnitude > 0, cross.isFinite else { continue }
-      let normal = cross.normalized()
-      sums[a] += normal
-      sums[b] += normal
-      sums[c] += normal
-    }
-    var result = self
-    result.normals = sums.map { $0.maxMagnitude > 0 && $0.isFinite ? $0.normalized() : .zero }
-    result.triangles = triangles.map {
-      OBJTriangle(vertexIndices: $0.vertexIndices, normalIndices: $0.vertexIndices)
-    }
-    return result
-  }
-
-  public func makeTriangles<S: RayScalar>(
-    materialIndex: Int, as _: S.Type = S.self
-  ) -> [Triangle<S>] {
-    triangles.map { face in
-      let v = face.vertexIndices
-      let normals = face.normalIndices.map { n in
-        Triangle<S>.VertexNormals(
-          Vector3<S>(self.normals[Int(n.x)]),
-          Vector3<S>(self.normals[Int(n.y)]),
-          Vector3<S>(self.normals[Int(n.z)]))
-      }
-      return Triangle<S>(
-        Vector3<S>(vertices[Int(v.x)]), Vector3<S>(vertices[Int(v.y)]),
-        Vector3<S>(vertices[Int(v.z)]), vertexNormals: normals,
-        materialIndex: materialIndex)
-    }
-  }
-}
-
-/// One triangle of an OBJ mesh: 0-based indices into `OBJMesh.vertices`
-/// and, when its face gave normals, into `OBJMesh.normals`. Int32 keeps a
-/// triangle at 32 bytes, so a mesh of a million faces costs 32 MB.
-public struct OBJTriangle: Hashable, Sendable {
-  public var vertexIndices: SIMD3<Int32>
-  /// −1s when the face gave no normals; read through `normalIndices`.
-  @usableFromInline var normalStorage: SIMD3<Int32>
-
-  public init(vertexIndices: SIMD3<Int32>, normalIndices: SIMD3<Int32>? = nil) {
-    self.vertexIndices = vertexIndices
-    normalStorage = normalIndices ?? SIMD3(repeating: -1)
-  }
-
-  /// Indices into `OBJMesh.normals`, or nil for a face without normals.
-  @inlinable
-  public var normalIndices: SIMD3<Int32>? {
-    get { normalStorage.x < 0 ? nil : normalStorage }
-    set { normalStorage = newValue ?? SIMD3(repeating: -1) }
-  }
-}
-
 // MARK: - Parser
 
 /// One pass over an OBJ file's bytes. Errors are thrown as `SceneError`.
@@ -163,7 +82,6 @@ struct OBJParser {
   /// Where the last token read ended, for "found end of line" messages.
   private var lastEnd = (line: 1, column: 1)
   private var mesh = OBJMesh()
-  private var textureCoordinateCount = 0
 
   /// The statements that name, group or decorate geometry without changing
   /// it, and are skipped with their arguments.
@@ -267,7 +185,7 @@ struct OBJParser {
     } else if length == 2 && first == UInt8(ascii: "v") {
       switch bytes[keyword.start + 1] {
       case UInt8(ascii: "n"): return try normal(keyword)
-      case UInt8(ascii: "t"): return try textureCoordinate()
+      case UInt8(ascii: "t"): return try textureCoordinate(keyword)
       default: break
       }
     }
@@ -317,25 +235,33 @@ struct OBJParser {
     mesh.normals.append(Vector3(x, y, z))
   }
 
-  /// `vt u [v [w]]`: checked and counted, so that faces' vt indices can be.
-  private mutating func textureCoordinate() throws(SceneError) {
-    _ = try coordinate("the u coordinate", of: "vt")
+  /// `vt u [v [w]]`: (u, v), v 0 when it is not given.
+  private mutating func textureCoordinate(_ keyword: Token) throws(SceneError)
+  {
+    guard mesh.textureCoordinates.count < Int(Int32.max) else {
+      throw error(
+        at: keyword,
+        "too many texture coordinates: at most \(Int32.max) are supported")
+    }
+    let u = try coordinate("the u coordinate", of: "vt")
+    var v = 0.0
     if let second = nextToken() {
-      _ = try number(second, "the v coordinate", of: "vt")
+      v = try number(second, "the v coordinate", of: "vt")
       if let third = nextToken() {
         _ = try number(third, "the w coordinate", of: "vt")
         try endOfLine(after: "vt u v w")
       }
     }
-    textureCoordinateCount += 1
+    mesh.textureCoordinates.append(TextureCoordinate(u, v))
   }
 
   /// `f` and three or more vertex references, fanned into triangles as they
   /// are read.
   private mutating func face(_ keyword: Token) throws(SceneError) {
     var count = 0
-    var first: (token: Token, vertex: Int32, normal: Int32, form: Form)?
-    var previous: (vertex: Int32, normal: Int32) = (0, 0)
+    var first:
+      (token: Token, vertex: Int32, normal: Int32, texture: Int32, form: Form)?
+    var previous: (vertex: Int32, normal: Int32, texture: Int32) = (0, 0, 0)
     while let token = nextToken() {
       let reference = try faceVertex(token)
       if let first {
@@ -353,12 +279,18 @@ struct OBJParser {
               vertexIndices: SIMD3(
                 first.vertex, previous.vertex, reference.vertex),
               normalIndices: first.normal < 0
-                ? nil : SIMD3(first.normal, previous.normal, reference.normal)))
+                ? nil : SIMD3(first.normal, previous.normal, reference.normal),
+              textureIndices: first.texture < 0
+                ? nil
+                : SIMD3(first.texture, previous.texture, reference.texture)))
         }
       } else {
-        first = (token, reference.vertex, reference.normal, reference.form)
+        first = (
+          token, reference.vertex, reference.normal, reference.texture,
+          reference.form
+        )
       }
-      previous = (reference.vertex, reference.normal)
+      previous = (reference.vertex, reference.normal, reference.texture)
       count += 1
     }
     guard count >= 3 else {
@@ -368,10 +300,12 @@ struct OBJParser {
   }
 
   /// One face vertex, `v`, `v/vt`, `v//vn` or `v/vt/vn`: its 0-based vertex
-  /// index, its 0-based normal index or −1, and its form.
+  /// index, its 0-based normal and texture indices or −1, and its form.
   private mutating func faceVertex(
     _ token: Token
-  ) throws(SceneError) -> (vertex: Int32, normal: Int32, form: Form) {
+  ) throws(SceneError) -> (
+    vertex: Int32, normal: Int32, texture: Int32, form: Form
+  ) {
     // The parts between slashes, found without allocating: this runs three
     // times per triangle.
     var firstSlash = token.end
@@ -404,17 +338,24 @@ struct OBJParser {
     else { throw malformedFaceVertex(token) }
     let vertex = try resolve(
       vertexPart, of: token, .vertex, count: mesh.vertices.count)
-    if form == .vertexTexture || form == .vertexTextureNormal {
-      _ = try resolve(
-        texturePart, of: token, .textureCoordinate,
-        count: textureCoordinateCount)
-    }
     var normal: Int32 = -1
+    var texture: Int32 = -1
+    if form == .vertexTexture && mesh.textureCoordinates.isEmpty
+      && !mesh.normals.isEmpty
+    {
+      // The course's `a/b` with only normals defined: b is a normal.
+      normal = try resolve(
+        texturePart, of: token, .normal, count: mesh.normals.count)
+    } else if form == .vertexTexture || form == .vertexTextureNormal {
+      texture = try resolve(
+        texturePart, of: token, .textureCoordinate,
+        count: mesh.textureCoordinates.count)
+    }
     if form == .vertexNormal || form == .vertexTextureNormal {
       normal = try resolve(
         normalPart, of: token, .normal, count: mesh.normals.count)
     }
-    return (vertex, normal, form)
+    return (vertex, normal, texture, form)
   }
 
   /// The 0-based index that the 1-based or negative index in `part` names,

@@ -15,9 +15,14 @@ public struct SceneError: Error, Equatable, CustomStringConvertible, Sendable {
     self.message = message
   }
 
+  /// `FILE:LINE:COLUMN: error: …`; without a column (a property list's
+  /// decoder names only lines) `FILE:LINE: error: …`; about the file as a
+  /// whole, or a property list's key path, `FILE: error: …`.
   public var description: String {
-    line > 0
-      ? "\(file):\(line):\(column): error: \(message)"
-      : "\(file): error: \(message)"
+    if line > 0 && column > 0 {
+      return "\(file):\(line):\(column): error: \(message)"
+    }
+    if line > 0 { return "\(file):\(line): error: \(message)" }
+    return "\(file): error: \(message)"
   }
 }

@@ -12,9 +12,13 @@ import Dispatch
 ///              DirectionalLight { direction … color … } }
 ///     Background { color r g b  ambientLight r g b }
 ///     Materials { numMaterials n  Material { diffuseColor … [specularColor …]
-///                 [shininess s] }  PhongMaterial { … } }
+///                 [shininess s] [texture PATH] }  PhongMaterial { … } }
 ///     Group { numObjects n  MaterialIndex i  Sphere { center … radius r }
-///             Plane { normal … offset d }  Group { … } }
+///             Plane { normal … offset d }  Triangle { vertex0 … }
+///             TriangleMesh { obj_file PATH }  Transform { … }  Group { … } }
+///
+/// Paths are relative to the scene file's folder. Meshes are read as
+/// `options` says (see `MeshLoader`).
 ///
 /// Only the camera and the group are required. Fields inside a block may come
 /// in any order, each once. Every problem is a `SceneError` at the offending
@@ -42,6 +46,14 @@ public struct SceneParser {
 
   private var tokenizer: SceneTokenizer
   private let file: String
+  private let options: SceneOptions
+  /// The materials, once their block is read: a mesh reads `a/b` faces by
+  /// whether its material has a texture.
+  private var parsedMaterials: [Material<Double>]?
+  /// Meshes without texture coordinates, checked against their material
+  /// when the scene is read: a textured material needs them.
+  private var meshesWithoutTextureCoordinates:
+    [(material: Int, token: SceneToken, path: String)] = []
   private var pendingMaterialChecks: [(index: Int, token: SceneToken)] = []
   /// Objects reserved so far for the counts groups declare. Reservations
   /// draw on what the file could hold, so a `numObjects` that lies, at any
@@ -62,14 +74,18 @@ public struct SceneParser {
   )
 
   /// Parses `text`; `file` names it in messages.
-  public static func parse(_ text: String, file: String) throws(SceneError) -> Scene {
-    try parse(bytes: Array(text.utf8), file: file)
+  public static func parse(
+    _ text: String, file: String, options: SceneOptions = .init(style: .course)
+  ) throws(SceneError) -> Scene {
+    try parse(bytes: Array(text.utf8), file: file, options: options)
   }
 
   /// Parses raw bytes, which need not be valid UTF-8: what a file on disk
   /// holds, and what the fuzzer (Fuzz/FuzzSceneParser.swift) feeds.
-  static func parse(bytes: [UInt8], file: String) throws(SceneError) -> Scene {
-    var parser = SceneParser(bytes: bytes, file: file)
+  static func parse(
+    bytes: [UInt8], file: String, options: SceneOptions = .init(style: .course)
+  ) throws(SceneError) -> Scene {
+    var parser = SceneParser(bytes: SceneBytes(bytes), file: file, options: options)
     return try parser.parseScene()
   }
 
@@ -87,25 +103,31 @@ public struct SceneParser {
     return try parser.parseScene()
   }
 
-  /// Reads and parses the file at `path`.
-  public static func parse(contentsOf path: String) throws(SceneError) -> Scene {
+  /// Reads and parses the text scene file at `path` (see `SceneReader`
+  /// for either format).
+  public static func parse(
+    contentsOf path: String, options: SceneOptions = .init(style: .course)
+  ) throws(SceneError) -> Scene {
     let bytes: SceneBytes
     do {
       bytes = try SceneBytes.contentsOf(path)
     } catch {
       throw SceneError(file: path, line: 0, column: 0, message: error.reason)
     }
-    var parser = SceneParser(bytes: bytes, file: path)
+    var parser = SceneParser(bytes: bytes, file: path, options: options)
     return try parser.parseScene()
   }
 
-  init(bytes: [UInt8], file: String) {
-    self.init(bytes: SceneBytes(bytes), file: file)
+  init(
+    bytes: [UInt8], file: String, options: SceneOptions = .init(style: .course)
+  ) {
+    self.init(bytes: SceneBytes(bytes), file: file, options: options)
   }
 
-  init(bytes: SceneBytes, file: String) {
+  init(bytes: SceneBytes, file: String, options: SceneOptions) {
     tokenizer = SceneTokenizer(bytes: bytes)
     self.file = file
+    self.options = options
     objectBudget = bytes.buffer.count / Self.minimumObjectLength
   }
 
@@ -137,6 +159,16 @@ public struct SceneParser {
             "MaterialIndex \(check.index) is out of range: the scene has "
               + "\(materialList.isEmpty ? "no materials (only the default, 0)" : "\(materialList.count) material\(materialList.count == 1 ? "" : "s") (0 to \(materialList.count - 1))")")
         }
+        for mesh in meshesWithoutTextureCoordinates
+        where materialList.indices.contains(mesh.material)
+          && materialList[mesh.material].texturePath != nil
+        {
+          throw error(
+            at: mesh.token,
+            "material \(mesh.material) has a texture, but the mesh "
+              + "'\(Self.escaped(mesh.path))' has no texture coordinates "
+              + "(no face gives vt)")
+        }
         return Scene(
           camera: camera, lights: lights ?? [],
           background: background?.color ?? .zero,
@@ -158,6 +190,7 @@ public struct SceneParser {
         case "Materials":
           try refuseRepeat(materials != nil, token)
           materials = try parseMaterials()
+          parsedMaterials = materials
         case "Group":
           try refuseRepeat(root != nil, token)
           root = try parseGroup(depth: 1, material: 0)
@@ -345,12 +378,14 @@ public struct SceneParser {
     var diffuse: RGB<Double>?
     var specular: RGB<Double>?
     var shininess: Double?
+    var texture: String?
     let close = try parseFields(
-      name, ["diffuseColor", "specularColor", "shininess"]
+      name, ["diffuseColor", "specularColor", "shininess", "texture"]
     ) { (parser: inout SceneParser, field: String) throws(SceneError) in
       switch field {
       case "diffuseColor": diffuse = try parser.color(field)
       case "specularColor": specular = try parser.color(field)
+      case "texture": texture = parser.resolved(try parser.path(after: field).0)
       default: shininess = try parser.nonNegative(field)
       }
     }
@@ -358,7 +393,8 @@ public struct SceneParser {
       throw missing(name, [("diffuseColor", false)], close)
     }
     return Material(
-      diffuse: diffuse, specular: specular ?? .zero, shininess: shininess ?? 0)
+      diffuse: diffuse, specular: specular ?? .zero, shininess: shininess ?? 0,
+      texturePath: texture)
   }
 
   /// A group's objects take the material set by the last `MaterialIndex`
@@ -566,7 +602,8 @@ public struct SceneParser {
     var stop: SceneTokenizer.Position
 
     init(bytes: SceneBytes, file: String, from split: Int, capacity: Int) {
-      parser = SceneParser(bytes: bytes, file: file)
+      parser = SceneParser(
+        bytes: bytes, file: file, options: .init(style: .course))
       parser.tokenizer.position = SceneTokenizer.Position(
         index: split, line: 1, lineStart: split)
       self.capacity = capacity
@@ -701,6 +738,13 @@ public struct SceneParser {
       case "XRotate": matrix = matrix * .rotationX(degrees: try number())
       case "YRotate": matrix = matrix * .rotationY(degrees: try number())
       case "ZRotate": matrix = matrix * .rotationZ(degrees: try number())
+      case "Rotate":
+        let at = peekStart()
+        let axis = try vector()
+        guard axis.maxMagnitude > 0 else {
+          throw error(at: at, "'Rotate' needs a non-zero axis")
+        }
+        matrix = matrix * .rotation(axis: axis, degrees: try number())
       case "Matrix4f":
         var entries: [Double] = []
         for _ in 0..<16 { entries.append(try number()) }
@@ -710,7 +754,7 @@ public struct SceneParser {
           token, expected: "a transform operation or an object",
           choices: [
             "Translate", "Scale", "UniformScale", "XRotate", "YRotate", "ZRotate",
-            "Matrix4f",
+            "Rotate", "Matrix4f",
           ] + Self.objectKinds.map { "\($0)" })
       }
     }
@@ -724,8 +768,20 @@ public struct SceneParser {
   private func checkMovedGeometry(
     _ transform: Transform<Double>, _ start: SceneToken
   ) throws(SceneError) {
+    guard Self.movedGeometryIsFinite(transform) else {
+      throw error(at: start, Self.movedGeometryMessage)
+    }
+  }
+
+  static let movedGeometryMessage =
+    "the Transform takes its object beyond Double's range: a coordinate, "
+    + "offset or normal is no longer finite, or a radius becomes 0"
+
+  /// Whether every primitive under `transform`, moved, is finite (and
+  /// every sphere keeps a positive radius).
+  static func movedGeometryIsFinite(_ transform: Transform<Double>) -> Bool {
     let moved = Group([.transform(transform)]).flattened()
-    let finite =
+    return
       moved.spheres.allSatisfy {
         $0.center.isFinite && $0.radius.isFinite && $0.radius > 0
       }
@@ -740,12 +796,6 @@ public struct SceneParser {
         $0.matrix.rowMajorEntries.allSatisfy(\.isFinite)
           && $0.inverse.rowMajorEntries.allSatisfy(\.isFinite)
       }
-    guard finite else {
-      throw error(
-        at: start,
-        "the Transform takes its object beyond Double's range: a coordinate, "
-          + "offset or normal is no longer finite, or a radius becomes 0")
-    }
   }
 
   private mutating func parseTriangle(material: Int) throws(SceneError) -> Triangle<Double> {
@@ -772,39 +822,48 @@ public struct SceneParser {
     let close = try parseFields(
       "TriangleMesh", ["obj_file"]
     ) { (parser: inout SceneParser, field: String) throws(SceneError) in
-      let token = try parser.next()
-      guard token.kind == .word else {
-        throw parser.error(at: token, "expected the OBJ file's path after 'obj_file'")
-      }
-      // The path as written: `text` escapes control characters, which
-      // would name another file.
-      path = (parser.tokenizer.text(of: token), token)
+      path = try parser.path(after: field)
     }
     guard let (relative, token) = path else {
       throw missing("TriangleMesh", [("obj_file", false)], close)
     }
-    let resolved: String
-    if relative.hasPrefix("/") {
-      resolved = relative
-    } else if let slash = file.lastIndex(of: "/") {
-      resolved = String(file[...slash]) + relative
-    } else {
-      resolved = relative
+    let resolved = resolved(relative)
+    let textured = parsedMaterials.map {
+      $0.indices.contains(material) && $0[material].texturePath != nil
     }
-    let mesh: OBJMesh
     do {
-      mesh = try OBJReader.read(contentsOf: resolved)
-    } catch {
-      // A file that cannot be opened is reported at the scene's reference
-      // to it; errors inside the OBJ file at their own position.
-      if error.line == 0 {
-        throw self.error(
-          at: token, "cannot read '\(Self.escaped(resolved))': \(error.message)")
+      let mesh = try MeshLoader.load(
+        resolved, materialIndex: material, textured: textured ?? false,
+        normals: options.meshNormals)
+      if !mesh.hasTextureCoordinates {
+        meshesWithoutTextureCoordinates.append((material, token, resolved))
       }
-      throw error
+      return mesh.object
+    } catch {
+      switch error {
+      case .inFile(let inner): throw inner
+      case .atReference(let message): throw self.error(at: token, message)
+      }
     }
-    let triangles = mesh.smoothed().makeTriangles(materialIndex: material, as: Double.self)
-    return .group(Group(triangles.map { .triangle($0) }))
+  }
+
+  /// The path after `field`, as written: `text` escapes control characters,
+  /// which would name another file.
+  private mutating func path(
+    after field: String
+  ) throws(SceneError) -> (String, SceneToken) {
+    let token = try next()
+    guard token.kind == .word else {
+      throw error(at: token, "expected a file's path after '\(field)'")
+    }
+    return (tokenizer.text(of: token), token)
+  }
+
+  /// `relative` against the scene file's folder; absolute paths as given.
+  private func resolved(_ relative: String) -> String {
+    if relative.hasPrefix("/") { return relative }
+    guard let slash = file.lastIndex(of: "/") else { return relative }
+    return String(file[...slash]) + relative
   }
 
   /// The hot path of large scenes: keywords are compared as bytes, and
