@@ -8,8 +8,10 @@ final class OBJReaderTests: XCTestCase {
     try OBJReader.parse(text, file: "mesh.obj")
   }
 
-  func triangle(_ v: SIMD3<Int32>, _ n: SIMD3<Int32>? = nil) -> OBJTriangle {
-    OBJTriangle(vertexIndices: v, normalIndices: n)
+  func triangle(
+    _ v: SIMD3<Int32>, _ n: SIMD3<Int32>? = nil, texture t: SIMD3<Int32>? = nil
+  ) -> OBJTriangle {
+    OBJTriangle(vertexIndices: v, normalIndices: n, textureIndices: t)
   }
 
   /// Four vertices, three texture coordinates and three normals.
@@ -30,7 +32,7 @@ final class OBJReaderTests: XCTestCase {
   // MARK: - Well-formed files
 
   /// Each face form: v, v/vt, v//vn and v/vt/vn; indices become 0-based,
-  /// texture coordinates are checked and dropped, normals kept.
+  /// texture coordinates and normals kept.
   func testParse_FaceForms() throws {
     let mesh = try parse(
       Self.elements + """
@@ -47,11 +49,18 @@ final class OBJReaderTests: XCTestCase {
     XCTAssertEqual(
       mesh.triangles,
       [
-        triangle(SIMD3(0, 1, 2)), triangle(SIMD3(0, 1, 3)),
+        triangle(SIMD3(0, 1, 2)),
+        triangle(SIMD3(0, 1, 3), texture: SIMD3(0, 1, 2)),
         triangle(SIMD3(0, 2, 3), SIMD3(0, 1, 2)),
-        triangle(SIMD3(1, 2, 3), SIMD3(2, 1, 0)),
+        triangle(SIMD3(1, 2, 3), SIMD3(2, 1, 0), texture: SIMD3(0, 1, 2)),
       ])
     XCTAssertNil(mesh.triangles[1].normalIndices)
+    XCTAssertEqual(
+      mesh.textureCoordinates,
+      [
+        TextureCoordinate(0, 0), TextureCoordinate(1, 0),
+        TextureCoordinate(0, 1),
+      ])
   }
 
   /// Negative indices count back from the latest element defined so far,
@@ -69,7 +78,8 @@ final class OBJReaderTests: XCTestCase {
       mesh.triangles,
       [
         triangle(SIMD3(0, 1, 2)), triangle(SIMD3(3, 2, 3), SIMD3(2, 0, 0)),
-        triangle(SIMD3(4, 0, 3)), triangle(SIMD3(4, 3, 2)),
+        triangle(SIMD3(4, 0, 3)),
+        triangle(SIMD3(4, 3, 2), texture: SIMD3(0, 1, 2)),
       ])
   }
 
@@ -126,7 +136,15 @@ final class OBJReaderTests: XCTestCase {
     XCTAssertEqual(
       mesh.vertices, [Vector3(1, 2, 3), Vector3(4, 5, 6), Vector3(7, 8, 9)])
     XCTAssertEqual(mesh.normals, [Vector3(0, 0, 1)])
-    XCTAssertEqual(mesh.triangles, [triangle(SIMD3(0, 1, 2), SIMD3(0, 0, 0))])
+    XCTAssertEqual(
+      mesh.triangles,
+      [triangle(SIMD3(0, 1, 2), SIMD3(0, 0, 0), texture: SIMD3(2, 1, 0))])
+    XCTAssertEqual(
+      mesh.textureCoordinates,
+      [
+        TextureCoordinate(0.5, 0), TextureCoordinate(0.5, 0.25),
+        TextureCoordinate(0.5, 0.25),
+      ], "a missing v is 0; w is dropped")
   }
 
   /// Line numbers count physical lines, continuations included.
