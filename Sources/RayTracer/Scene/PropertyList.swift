@@ -61,12 +61,7 @@ enum PropertyList: Decodable, Sendable {
   static func decode(
     _ bytes: [UInt8], file: String
   ) throws(SceneError) -> PropertyList {
-    if let line = xmlLineBeyondDepth(bytes) {
-      throw SceneError(
-        file: file, line: line, column: 0,
-        message: "the property list is nested more than \(maximumDepth) "
-          + "levels deep")
-    }
+    try checkDepth(bytes, file: file)
     do {
       return try PropertyListDecoder().decode(
         PropertyList.self, from: Data(bytes))
@@ -75,55 +70,6 @@ enum PropertyList: Decodable, Sendable {
       throw SceneError(
         file: file, line: line ?? 0, column: 0,
         message: "not a valid property list: \(reason)")
-    }
-  }
-
-  /// The line of an XML property list at which its elements first nest
-  /// deeper than `maximumDepth`, or nil. A conservative count of opening
-  /// and closing `dict` and `array` tags; binary lists are not scanned.
-  private static func xmlLineBeyondDepth(_ bytes: [UInt8]) -> Int? {
-    guard !bytes.starts(with: Array("bplist".utf8)) else { return nil }
-    var depth = 0
-    var line = 1
-    var index = 0
-    let count = bytes.count
-    while index < count {
-      let byte = bytes[index]
-      if byte == 0x0A {
-        line += 1
-      } else if byte == UInt8(ascii: "<"), index + 1 < count {
-        let closing = bytes[index + 1] == UInt8(ascii: "/")
-        let nameStart = index + (closing ? 2 : 1)
-        if starts(bytes, at: nameStart, with: "dict")
-          || starts(bytes, at: nameStart, with: "array")
-        {
-          var end = nameStart
-          while end < count && bytes[end] != UInt8(ascii: ">") { end += 1 }
-          let selfClosing = end > 0 && end < count
-            && bytes[end - 1] == UInt8(ascii: "/")
-          if closing {
-            depth -= 1
-          } else if !selfClosing {
-            depth += 1
-            if depth > maximumDepth { return line }
-          }
-        }
-      }
-      index += 1
-    }
-    return nil
-  }
-
-  private static func starts(
-    _ bytes: [UInt8], at index: Int, with word: StaticString
-  ) -> Bool {
-    let length = word.utf8CodeUnitCount
-    guard index + length <= bytes.count else { return false }
-    return word.withUTF8Buffer { word in
-      for offset in 0..<length where bytes[index + offset] != word[offset] {
-        return false
-      }
-      return true
     }
   }
 

@@ -291,6 +291,29 @@ final class PlistSceneReaderTests: XCTestCase {
     }
   }
 
+  /// A binary list nested deeper than any scene needs is refused before
+  /// the decoder (which recurses per level) sees it; a cut-off one is an
+  /// error, never a trap.
+  func testErrors_BinaryNesting() throws {
+    var value: Any = "leaf"
+    for _ in 0..<2_000 { value = [value] }
+    let binary = try PropertyListSerialization.data(
+      fromPropertyList: ["Camera": value], format: .binary, options: 0)
+    XCTAssertThrowsError(
+      try SceneReader.parse(bytes: Array(binary), file: "deep.plist")
+    ) { error in
+      XCTAssertEqual(
+        (error as? SceneError)?.description,
+        "deep.plist: error: the property list is nested more than 816 "
+          + "levels deep")
+    }
+    XCTAssertEqual(PropertyList.binaryDepth(Array(binary)), 817)
+    for cut in stride(from: 8, to: binary.count, by: 97) {
+      XCTAssertThrowsError(
+        try SceneReader.parse(bytes: Array(binary.prefix(cut)), file: "c"))
+    }
+  }
+
   /// Malformed XML: the decoder's reason, at its line.
   func testErrors_MalformedXML() {
     XCTAssertThrowsError(
