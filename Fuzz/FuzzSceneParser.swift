@@ -25,12 +25,6 @@
 
 @testable import RayTracer
 
-#if canImport(Glibc)
-import Glibc
-#elseif canImport(Darwin)
-import Darwin
-#endif
-
 /// Extra render checks, off by default: see the file header.
 let strictChecks = getenv("FUZZ_STRICT").map { $0.pointee == UInt8(ascii: "1") } ?? false
 

@@ -1,10 +1,6 @@
 import ArgumentParser
 import RayTracer
 
-#if canImport(Glibc)
-import Glibc
-#endif
-
 /// `raytrace bench`: the fixed workloads of the README's performance table.
 struct Bench: ParsableCommand {
   static let configuration = CommandConfiguration(
@@ -76,9 +72,6 @@ struct Bench: ParsableCommand {
 
   /// This very executable, so that the benchmark times the build it ships in.
   private func currentExecutable() -> String {
-    var buffer = [CChar](repeating: 0, count: 4096)
-    let length = readlink("/proc/self/exe", &buffer, buffer.count - 1)
-    guard length > 0 else { return CommandLine.arguments[0] }
-    return String(decoding: buffer[0..<length].map { UInt8(bitPattern: $0) }, as: UTF8.self)
+    Platform.currentExecutable() ?? CommandLine.arguments[0]
   }
 }

@@ -1,8 +1,4 @@
-#if canImport(Glibc)
-import Glibc
-#elseif canImport(Darwin)
-import Darwin
-#endif
+import RayTracer
 
 /// Writes one line to standard error.
 func printError(_ line: String) {

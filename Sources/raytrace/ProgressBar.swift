@@ -1,9 +1,4 @@
 import RayTracer
-import Synchronization
-
-#if canImport(Glibc)
-import Glibc
-#endif
 
 /// A progress bar on standard error for renders that take more than about
 /// a second, and only when standard error is a terminal: scripts and
@@ -12,8 +7,9 @@ final class ProgressBar: Sendable {
   let total: Int
   private let start = Stopwatch.now()
   /// The last permille drawn, so that concurrent workers draw each step once.
-  private let drawn = Atomic<Int>(-1)
-  private let visible = Atomic<Bool>(false)
+  private let drawn = AtomicCounter(-1)
+  /// 1 once the bar has been drawn.
+  private let visible = AtomicCounter(0)
 
   /// Nil when standard error is not a terminal.
   init?(rows: Int) {
@@ -28,11 +24,11 @@ final class ProgressBar: Sendable {
     // will be done within a second.
     guard elapsed > 0.25, elapsed * Double(total) / Double(max(finished, 1)) > 1 else { return }
     let permille = finished * 1000 / total
-    let previous = drawn.load(ordering: .relaxed)
+    let previous = drawn.load()
     guard permille / 10 > previous / 10 || (permille == 1000 && previous != 1000) else { return }
-    guard drawn.compareExchange(expected: previous, desired: permille, ordering: .relaxed).exchanged
+    guard drawn.exchange(expected: previous, desired: permille)
     else { return }
-    visible.store(true, ordering: .relaxed)
+    visible.store(1)
     let width = 40
     let filled = permille * width / 1000
     let bar = String(repeating: "#", count: filled) + String(repeating: ".", count: width - filled)
@@ -41,7 +37,7 @@ final class ProgressBar: Sendable {
 
   /// Clears the bar's line, if one was drawn.
   func finish() {
-    if visible.load(ordering: .relaxed) {
+    if visible.load() == 1 {
       printRaw("\r\u{1B}[K")
     }
   }

@@ -1,12 +1,6 @@
 import ArgumentParser
 import RayTracer
 
-#if canImport(Glibc)
-import Glibc
-#elseif canImport(Darwin)
-import Darwin
-#endif
-
 @main
 struct Raytrace: ParsableCommand {
   static let configuration = CommandConfiguration(

@@ -2,12 +2,6 @@ import Dispatch
 import ArgumentParser
 import RayTracer
 
-#if canImport(Glibc)
-import Glibc
-#elseif canImport(Darwin)
-import Darwin
-#endif
-
 struct Render: ParsableCommand {
   static let configuration = CommandConfiguration(
     commandName: "render",

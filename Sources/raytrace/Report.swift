@@ -1,12 +1,6 @@
 import ArgumentParser
 import RayTracer
 
-#if canImport(Glibc)
-import Glibc
-#elseif canImport(Darwin)
-import Darwin
-#endif
-
 /// `raytrace report`: error against run time for every precision and method.
 struct Report: ParsableCommand {
   static let configuration = CommandConfiguration(

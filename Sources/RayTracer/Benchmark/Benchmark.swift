@@ -1,9 +1,3 @@
-#if canImport(Glibc)
-import Glibc
-#elseif canImport(Darwin)
-import Darwin
-#endif
-
 /// One fixed workload of `raytrace bench`.
 public struct Workload: Sendable {
   public enum Source: Sendable {
@@ -183,40 +177,36 @@ public struct Benchmark {
 
   /// Runs a child with standard error captured, and its resource usage.
   static func spawn(_ executable: String, _ arguments: [String]) throws -> Outcome {
-    var pipe: [Int32] = [0, 0]
-    guard Glibc.pipe(&pipe) == 0 else { throw Failure(description: "pipe failed") }
-    var actions = posix_spawn_file_actions_t()
-    posix_spawn_file_actions_init(&actions)
-    defer { posix_spawn_file_actions_destroy(&actions) }
-    posix_spawn_file_actions_adddup2(&actions, pipe[1], 2)
-    posix_spawn_file_actions_addclose(&actions, pipe[0])
-    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0)
-    let argv = ([executable] + arguments).map { strdup($0) } + [nil]
-    defer { argv.forEach { free($0) } }
+    guard let pipe = Platform.makePipe() else {
+      throw Failure(description: "pipe failed")
+    }
     var clock = Stopwatch()
-    var child: pid_t = 0
-    let status = posix_spawn(&child, executable, &actions, nil, argv, environ)
-    close(pipe[1])
-    guard status == 0 else {
-      close(pipe[0])
-      throw Failure(description: "cannot start \(executable): \(String(cString: strerror(status)))")
+    let spawned = Platform.spawn(executable, arguments, errorPipe: pipe)
+    close(pipe.write)
+    guard case .success(let child) = spawned else {
+      close(pipe.read)
+      if case .failure(let error) = spawned {
+        throw Failure(
+          description: "cannot start \(executable): "
+            + String(cString: strerror(error.code)))
+      }
+      throw Failure(description: "cannot start \(executable)")
     }
     var captured: [UInt8] = []
     var buffer = [UInt8](repeating: 0, count: 4096)
     while true {
-      let count = read(pipe[0], &buffer, buffer.count)
+      let count = read(pipe.read, &buffer, buffer.count)
       if count <= 0 { break }
       captured += buffer[0..<count]
     }
-    close(pipe[0])
+    close(pipe.read)
     var usage = rusage()
     var exit: Int32 = 0
     while wait4(child, &exit, 0, &usage) < 0 && errno == EINTR {}
     let wall = clock.lap()
-    // ru_maxrss is in kilobytes on Linux.
     return Outcome(
       status: (exit & 0x7F) == 0 ? (exit >> 8) & 0xFF : 128 + (exit & 0x7F),
       stderr: String(decoding: captured, as: UTF8.self), wallSeconds: wall,
-      peakBytes: Int(usage.ru_maxrss) * 1024)
+      peakBytes: Platform.peakBytes(usage))
   }
 }

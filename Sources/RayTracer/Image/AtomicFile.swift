@@ -1,9 +1,3 @@
-#if canImport(Glibc)
-import Glibc
-#elseif canImport(Darwin)
-import Darwin
-#endif
-
 /// Why an output file could not be written; the description is one sentence
 /// naming the path and the system's reason.
 public struct OutputError: Error, CustomStringConvertible, Sendable {
@@ -77,7 +71,8 @@ public enum AtomicFile {
     var written = 0
     while written < bytes.count {
       let result = bytes.withUnsafeBytes { buffer in
-        Glibc.write(descriptor, buffer.baseAddress! + written, buffer.count - written)
+        Platform.writeBytes(
+          descriptor, buffer.baseAddress! + written, buffer.count - written)
       }
       if result < 0 {
         if errno == EINTR { continue }

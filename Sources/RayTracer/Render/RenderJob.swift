@@ -1,11 +1,5 @@
 import Dispatch
 
-#if canImport(Glibc)
-import Glibc
-#elseif canImport(Darwin)
-import Darwin
-#endif
-
 /// One image file a render writes.
 public struct OutputFile: Hashable, Sendable {
   /// Exactly one of `.depth`, `.normals`, `.shaded`.

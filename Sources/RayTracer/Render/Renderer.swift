@@ -1,10 +1,4 @@
-#if canImport(Glibc)
-import Glibc
-#elseif canImport(Darwin)
-import Darwin
-#endif
 import Dispatch
-import Synchronization
 
 /// The per-pixel loop: one camera ray per pixel, nearest hit, then only the
 /// quantities the requested outputs need.
@@ -384,18 +378,18 @@ public enum Renderer {
     _ body: @Sendable (Range<Int>) -> Void
   ) {
     let batches = (rows + rowsPerBatch - 1) / rowsPerBatch
-    let next = Atomic<Int>(0)
-    let done = Atomic<Int>(0)
+    let next = AtomicCounter(0)
+    let done = AtomicCounter(0)
     let workers = max(1, min(threads, batches))
     withoutActuallyEscaping(body) { body in
       let work: @Sendable () -> Void = {
         while true {
-          let batch = next.wrappingAdd(1, ordering: .relaxed).oldValue
+          let batch = next.add(1).old
           guard batch < batches else { return }
           let start = batch * rowsPerBatch
           let end = min(rows, start + rowsPerBatch)
           body(start..<end)
-          let finished = done.wrappingAdd(end - start, ordering: .relaxed).newValue
+          let finished = done.add(end - start).new
           progress?(finished)
         }
       }

@@ -1,9 +1,3 @@
-#if canImport(Glibc)
-import Glibc
-#elseif canImport(Darwin)
-import Darwin
-#endif
-
 /// The bytes a scene is parsed from, immutable once read, so the threads
 /// of a parse share them.
 ///

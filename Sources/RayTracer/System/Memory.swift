@@ -1,9 +1,3 @@
-#if canImport(Glibc)
-import Glibc
-#elseif canImport(Darwin)
-import Darwin
-#endif
-
 /// Large arrays on 2 MiB pages: a 4 KiB page fault for every 4 KiB of the
 /// arrays of a million spheres, or of a render's buffers, was a tenth to a
 /// quarter of the step that first wrote them.

@@ -17,22 +17,23 @@ final class CommandLineTests: XCTestCase {
     return parts.joined(separator: "/")
   }
 
-  /// The executable beside the test bundle (SwiftPM builds it first: the
-  /// test target depends on it).
-  static var executable: String {
-    let bundle = URL(fileURLWithPath: CommandLine.arguments[0]).deletingLastPathComponent()
-    var url = bundle
-    while url.path != "/" {
-      let candidate = url.appendingPathComponent("raytrace").path
-      var isDirectory: ObjCBool = false
-      if FileManager.default.fileExists(atPath: candidate, isDirectory: &isDirectory),
-        !isDirectory.boolValue
-      {
-        return candidate
-      }
-      url.deleteLastPathComponent()
+  /// Where SwiftPM put the built products, found as its package templates
+  /// find it: beside the .xctest bundle on macOS (where argv[0] is
+  /// `xctest`), the bundle's own folder elsewhere.
+  static var productsDirectory: URL {
+    #if os(macOS)
+    for bundle in Bundle.allBundles where bundle.bundlePath.hasSuffix(".xctest") {
+      return bundle.bundleURL.deletingLastPathComponent()
     }
-    return bundle.appendingPathComponent("raytrace").path
+    fatalError("cannot find the products directory")
+    #else
+    return Bundle.main.bundleURL
+    #endif
+  }
+
+  /// The executable the test target depends on (SwiftPM builds it first).
+  static var executable: String {
+    productsDirectory.appendingPathComponent("raytrace").path
   }
 
   var folder = ""

@@ -2,10 +2,6 @@ import XCTest
 
 @testable import RayTracer
 
-#if canImport(Glibc)
-import Glibc
-#endif
-
 final class AtomicFileTests: XCTestCase {
   var folder = ""
 

@@ -9,7 +9,9 @@ final class QuantizeTests: XCTestCase {
   func expected<S: RayScalar>(_ value: S, _ style: ImageStyle) -> UInt8 {
     guard value > 0 else { return 0 }
     guard value < 1 else { return 255 }
-    let scaled = Float80(value * 255)
+    // In the reference precision (wider than Double where the platform
+    // has it): v·255 in the value's own type, then rounded once more.
+    let scaled = ReferenceScalar(value * 255)
     let whole = style == .course ? scaled.rounded(.towardZero) : scaled.rounded()
     return UInt8(whole)
   }
