@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer harnesses with swiftc and runs one of them.
 #
-#   Fuzz/run.sh [scene|cli|obj] [LIBFUZZER OPTION...]
+#   Fuzz/run.sh [scene|plist|obj|bmp|cli] [LIBFUZZER OPTION...]
 #   Fuzz/run.sh build            # build every fuzzer, run nothing
 #
 #   Fuzz/run.sh scene -runs=10000000
@@ -11,8 +11,10 @@
 # Harnesses: Fuzz/FuzzSceneParser.swift (scene files, then a 4x3 render of
 # whatever parses) and Fuzz/FuzzCommandLine.swift (arguments split at NUL
 # bytes, parsed and validated, never run) and Fuzz/FuzzOBJReader.swift (OBJ
-# files: a mesh with indices in range, or one well-formed error). See each
-# file's header for what it checks.
+# files: a mesh with indices in range, or one well-formed error),
+# Fuzz/FuzzPlistScene.swift (property-list scenes, then a 4x3 render) and
+# Fuzz/FuzzBMPReader.swift (texture files). See each file's header for what
+# it checks.
 #
 # Why not SwiftPM: it cannot build a libFuzzer target (its products would
 # get libFuzzer's main), so each module is compiled here with swiftc, the
@@ -92,6 +94,18 @@ build_obj() {
     -lz -use-ld=lld -o "$objects/fuzz-obj"
 }
 
+# A harness of the library alone: build_library NAME FILE.
+build_library() {
+  compile RealModule Sources/RealModule
+  compile RayTracer Sources/RayTracer -enable-testing \
+    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap
+  echo "linking fuzz-$1" >&2
+  "$swiftc" "${flags[@]}" -I "$objects" \
+    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap \
+    "$2" "$objects/RayTracer.o" "$objects/RealModule.o" \
+    -lz -use-ld=lld -o "$objects/fuzz-$1"
+}
+
 build_cli() {
   compile RealModule Sources/RealModule
   compile RayTracer Sources/RayTracer -enable-testing \
@@ -113,7 +127,17 @@ case $mode in
     build_scene
     build_cli
     build_obj
+    build_library plist Fuzz/FuzzPlistScene.swift
+    build_library bmp Fuzz/FuzzBMPReader.swift
     exit 0
+    ;;
+  plist)
+    build_library plist Fuzz/FuzzPlistScene.swift
+    dictionary=Fuzz/plist.dict
+    ;;
+  bmp)
+    build_library bmp Fuzz/FuzzBMPReader.swift
+    dictionary=Fuzz/bmp.dict
     ;;
   obj)
     build_obj
@@ -128,7 +152,7 @@ case $mode in
     dictionary=Fuzz/cli.dict
     ;;
   *)
-    echo "usage: Fuzz/run.sh [scene|cli|obj|build] [libFuzzer option...]" >&2
+    echo "usage: Fuzz/run.sh [scene|plist|obj|bmp|cli|build] [libFuzzer option...]" >&2
     exit 64
     ;;
 esac
