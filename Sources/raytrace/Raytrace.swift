@@ -14,3 +14,4 @@ extension ImageStyle: ExpressibleByArgument {}
 extension Precision: ExpressibleByArgument {}
 extension IntersectionMethod: ExpressibleByArgument {}
 extension PixelFilter: ExpressibleByArgument {}
+extension Engine: ExpressibleByArgument {}

@@ -72,6 +72,12 @@ struct Render: ParsableCommand {
   @Option(help: "Sphere intersection: stable (cancellation-free) or naive (the course's textbook formula, for comparison).")
   var intersection: IntersectionMethod = .stable
 
+  @Option(
+    help: ArgumentHelp(
+      "Renderer: fast (the default) or course (the course's loop over every object by the hit protocol, in double precision; the same image, slower).",
+      valueName: "engine"))
+  var engine: Engine = .fast
+
   @Option(help: "Worker threads (default: all cores). The image is identical for any count.")
   var threads: Int?
 
@@ -192,6 +198,11 @@ struct Render: ParsableCommand {
       precision: precision, threads: threads ?? Renderer.availableCores)
     settings.samples = samples
     settings.filter = filter
+    guard engine == .fast || precision == .double else {
+      throw ValidationError(
+        "--engine course computes in double, the scene's precision; drop --precision float or use --engine fast.")
+    }
+    settings.engine = engine
     guard (0...1000).contains(repeats) else {
       throw ValidationError("--repeat must be between 0 and 1000; got \(repeats).")
     }
@@ -303,6 +314,7 @@ struct Render: ParsableCommand {
     printError(
       "size: \(settings.width)x\(settings.height), \(report.rays) rays, "
         + "precision \(settings.precision.rawValue), intersection \(settings.method.rawValue), "
+        + "engine \(settings.engine.rawValue), "
         + "style \(settings.style.rawValue), threads \(settings.threads)")
     printError(
       "outputs: \(settings.outputs.names.joined(separator: ", "))"

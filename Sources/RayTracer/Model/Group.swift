@@ -30,28 +30,36 @@ public enum SceneObject<Scalar: RayScalar>: Hashable, Sendable {
 
 extension SceneObject: Intersectable {
   public func intersect(
-    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar
+    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar,
+    method: IntersectionMethod
   ) -> Hit<Scalar>? {
     switch self {
-    case .sphere(let sphere): sphere.intersect(ray, after: tMin, before: tMax)
-    case .plane(let plane): plane.intersect(ray, after: tMin, before: tMax)
-    case .triangle(let triangle): triangle.intersect(ray, after: tMin, before: tMax)
-    case .group(let group): group.intersect(ray, after: tMin, before: tMax)
-    case .transform(let transform): transform.intersect(ray, after: tMin, before: tMax)
+    case .sphere(let sphere):
+      sphere.intersect(ray, after: tMin, before: tMax, method: method)
+    case .plane(let plane):
+      plane.intersect(ray, after: tMin, before: tMax, method: method)
+    case .triangle(let triangle):
+      triangle.intersect(ray, after: tMin, before: tMax, method: method)
+    case .group(let group):
+      group.intersect(ray, after: tMin, before: tMax, method: method)
+    case .transform(let transform):
+      transform.intersect(ray, after: tMin, before: tMax, method: method)
     }
   }
 }
 
 extension Group: Intersectable {
-  /// The nearest hit among the objects; each later object only has to beat
-  /// the nearest so far.
+  /// The nearest hit among the objects, tested in order; each later object
+  /// only has to beat the nearest so far (strictly: a tie goes to the
+  /// earlier object).
   public func intersect(
-    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar
+    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar,
+    method: IntersectionMethod
   ) -> Hit<Scalar>? {
     var nearest: Hit<Scalar>?
     for object in objects {
       if let hit = object.intersect(
-        ray, after: tMin, before: nearest?.t ?? tMax)
+        ray, after: tMin, before: nearest?.t ?? tMax, method: method)
       {
         nearest = hit
       }

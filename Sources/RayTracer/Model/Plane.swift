@@ -19,17 +19,27 @@ extension Plane: Intersectable {
   /// The hit in (tMin, tMax), or nil: a ray parallel to the plane (n·d = 0)
   /// misses it, as does a ray starting on it (t = 0 is not > tMin ≥ 0).
   ///
-  /// Both d − n·o and n·d are evaluated compensated: the first cancels when the
-  /// origin is near the plane, the second at grazing angles.
+  /// The stable method takes the plane relative to the ray's origin,
+  /// k = d − n·o without cancellation, and n·d compensated at grazing
+  /// angles (`PlaneIntersection.stableT`).
   public func intersect(
-    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar
+    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar,
+    method: IntersectionMethod
   ) -> Hit<Scalar>? {
-    let distance: Scalar = CameraRelative.plane(
-      normal: normal, offset: offset, eye: ray.origin)
-    let denominator = Compensated.dot(normal, ray.direction)
-    guard denominator != 0 else { return nil }
-    let t = distance / denominator
-    guard t > tMin && t < tMax else { return nil }
-    return Hit(t: t, normal: normal, materialIndex: materialIndex)
+    let t: Scalar?
+    switch method {
+    case .naive:
+      t = PlaneIntersection.naiveT(
+        normal: normal, offset: offset, origin: ray.origin,
+        direction: ray.direction, after: tMin, before: tMax)
+    case .stable:
+      let distance: Scalar = CameraRelative.plane(
+        normal: normal, offset: offset, eye: ray.origin)
+      t = PlaneIntersection.stableT(
+        normal: normal, normalTail: .zero, distance: distance,
+        isAxisAligned: PlaneIntersection.isAxisAligned(normal),
+        direction: ray.direction, after: tMin, before: tMax)
+    }
+    return t.map { Hit(t: $0, normal: normal, materialIndex: materialIndex) }
   }
 }

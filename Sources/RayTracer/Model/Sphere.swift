@@ -12,20 +12,13 @@ public struct Sphere<Scalar: RayScalar>: Hashable, Sendable {
 }
 
 extension Sphere: Intersectable {
-  /// The nearest hit in (tMin, tMax) by the stable method.
+  /// The nearest hit in (tMin, tMax) by the given method.
   ///
   /// Misses return nil; a tangent ray hits at its double root; a ray from
   /// inside (or from the surface, with tMin = 0) hits the far side. The
-  /// normal is outward and unit length. Relative error of t: a few ulps away
-  /// from the silhouette, whatever the ratio of distance to radius (see the
-  /// stiff suite).
-  public func intersect(
-    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar
-  ) -> Hit<Scalar>? {
-    intersect(ray, after: tMin, before: tMax, method: .stable)
-  }
-
-  /// The nearest hit in (tMin, tMax) by the given method.
+  /// normal is outward and unit length. The stable method's relative error
+  /// of t is a few ulps away from the silhouette, whatever the ratio of
+  /// distance to radius (see the stiff suite).
   public func intersect(
     _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar,
     method: IntersectionMethod
@@ -41,19 +34,23 @@ extension Sphere: Intersectable {
         origin: ray.origin, direction: ray.direction, center: center, t: t)
       return Hit(t: t, normal: normal, materialIndex: materialIndex)
     case .stable:
+      // The sphere as seen from the ray's origin: p = centre − o and
+      // c = |p|² − r², each rounded once.
       let relative = CameraRelative.sphere(
         center: center, radius: radius, eye: ray.origin, as: Scalar.self)
-      let inverseA = 1 / ray.direction.lengthSquared
+      let a = ray.direction.lengthSquared
+      let inverseA = SphereIntersection.inverseLengthSquared(a)
       let radiusSquared = radius * radius
       guard
         let root = SphereIntersection.stableRoot(
-          direction: ray.direction, lengthSquared: ray.direction.lengthSquared,
-          inverseLengthSquared: inverseA, offset: relative.offset, c: relative.c,
-          radiusSquared: radiusSquared, after: tMin, before: tMax)
+          direction: ray.direction, lengthSquared: a,
+          inverseLengthSquared: inverseA, offset: relative.offset,
+          c: relative.c, radiusSquared: radiusSquared,
+          after: tMin, before: tMax)
       else { return nil }
       let normal = SphereIntersection.stableNormal(
-        direction: ray.direction, inverseLengthSquared: inverseA,
-        offset: relative.offset, radiusSquared: radiusSquared,
+        direction: ray.direction, inverseLengthSquared: inverseA, t: root.t,
+        offset: relative.offset, c: relative.c, radiusSquared: radiusSquared,
         inverseRadius: 1 / radius, entering: root.entering)
       return Hit(t: root.t, normal: normal, materialIndex: materialIndex)
     }

@@ -1,9 +1,15 @@
 /// An object placed by an affine matrix (the course's `Transform`): the
 /// object's points P appear at M·P.
 ///
-/// Rays are taken into the object's space by M⁻¹ without renormalising the
-/// direction, so t means the same point in both spaces; normals come back
-/// by the inverse transpose.
+/// The course takes the ray into the object's space by M⁻¹ (direction not
+/// renormalised, so t means the same point in both spaces) and brings the
+/// normal back by the inverse transpose. Here the object is placed in the
+/// world instead wherever it stays the same kind of object there, which
+/// rounds less: triangles by their moved vertices, planes by their moved
+/// normal and point, spheres under similarities by their moved centre and
+/// scaled radius. Only a sphere stretched into an ellipsoid is hit the
+/// course's way, in its own space (`TransformedSphere`). The fast engine
+/// places objects the same way, once per render (`Group.flattened`).
 public struct Transform<Scalar: RayScalar>: Hashable, Sendable {
   public var matrix: Matrix4<Scalar>
   public var inverse: Matrix4<Scalar>
@@ -12,6 +18,14 @@ public struct Transform<Scalar: RayScalar>: Hashable, Sendable {
   /// Nil when the matrix has no inverse (a scale of zero, say).
   public init?(matrix: Matrix4<Scalar>, object: SceneObject<Scalar>) {
     guard let inverse = matrix.inverse() else { return nil }
+    self.init(matrix: matrix, inverse: inverse, object: object)
+  }
+
+  /// A transform whose inverse is known (a product of inverses, say).
+  init(
+    matrix: Matrix4<Scalar>, inverse: Matrix4<Scalar>,
+    object: SceneObject<Scalar>
+  ) {
     self.matrix = matrix
     self.inverse = inverse
     self.object = object
@@ -19,17 +33,15 @@ public struct Transform<Scalar: RayScalar>: Hashable, Sendable {
 }
 
 extension Transform: Intersectable {
+  /// The nearest hit of the placed object. Placing it costs a pass over
+  /// the object for every ray: the course engine's price for testing the
+  /// scene as the file describes it.
   public func intersect(
-    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar
+    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar,
+    method: IntersectionMethod
   ) -> Hit<Scalar>? {
-    let local = Ray(
-      origin: inverse.transformPoint(ray.origin),
-      direction: inverse.transformDirection(ray.direction))
-    guard var hit = object.intersect(local, after: tMin, before: tMax) else {
-      return nil
-    }
-    hit.normal = matrix.transformNormal(hit.normal)
-    return hit
+    Group([.transform(self)]).flattened().intersect(
+      ray, after: tMin, before: tMax, method: method)
   }
 }
 
@@ -41,6 +53,25 @@ public struct TransformedSphere<Scalar: RayScalar>: Hashable, Sendable {
   public var inverse: Matrix4<Scalar>
 }
 
+extension TransformedSphere: Intersectable {
+  /// The course's way: the ray taken into the sphere's space by M⁻¹, the
+  /// sphere's normal brought back by the inverse transpose.
+  public func intersect(
+    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar,
+    method: IntersectionMethod
+  ) -> Hit<Scalar>? {
+    let local = Ray(
+      origin: inverse.transformPoint(ray.origin),
+      direction: inverse.transformDirection(ray.direction))
+    guard
+      var hit = sphere.intersect(
+        local, after: tMin, before: tMax, method: method)
+    else { return nil }
+    hit.normal = matrix.transformNormal(hit.normal)
+    return hit
+  }
+}
+
 /// Every primitive of a scene graph with its transforms applied: in world
 /// space where that is exact enough (triangles, planes, spheres under
 /// similarities), as transformed spheres otherwise.
@@ -49,6 +80,61 @@ public struct Primitives<Scalar: RayScalar>: Sendable {
   public var planes: [Plane<Scalar>] = []
   public var triangles: [Triangle<Scalar>] = []
   public var transformedSpheres: [TransformedSphere<Scalar>] = []
+}
+
+extension Group {
+  /// The same group with every transform's object placed in the world, once
+  /// (see `Transform`): each transform becomes a group of its spheres,
+  /// planes and triangles in world space, then its ellipsoids, each a
+  /// transform of one sphere. It is hit exactly as the group is.
+  public func placed() -> Group {
+    Group(objects.map { $0.placed() })
+  }
+}
+
+extension SceneObject {
+  /// The object with its transforms applied (see `Group.placed`).
+  public func placed() -> SceneObject {
+    switch self {
+    case .sphere, .plane, .triangle:
+      return self
+    case .group(let group):
+      return .group(group.placed())
+    case .transform:
+      let all = Group([self]).flattened()
+      var objects: [SceneObject] = all.spheres.map { .sphere($0) }
+      objects += all.planes.map { .plane($0) }
+      objects += all.triangles.map { .triangle($0) }
+      objects += all.transformedSpheres.map {
+        .transform(
+          Transform(matrix: $0.matrix, inverse: $0.inverse, object: .sphere($0.sphere)))
+      }
+      return .group(Group(objects))
+    }
+  }
+}
+
+extension Primitives: Intersectable {
+  /// The nearest hit, kind by kind as the fast engine tests them: spheres,
+  /// planes, triangles, then ellipsoids, each in order.
+  public func intersect(
+    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar,
+    method: IntersectionMethod
+  ) -> Hit<Scalar>? {
+    var nearest: Hit<Scalar>?
+    func test(_ object: some Intersectable<Scalar>) {
+      if let hit = object.intersect(
+        ray, after: tMin, before: nearest?.t ?? tMax, method: method)
+      {
+        nearest = hit
+      }
+    }
+    spheres.forEach(test)
+    planes.forEach(test)
+    triangles.forEach(test)
+    transformedSpheres.forEach(test)
+    return nearest
+  }
 }
 
 extension Group {

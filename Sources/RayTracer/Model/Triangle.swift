@@ -135,14 +135,24 @@ extension Triangle: Intersectable {
   /// plane misses, as do degenerate triangles (`isDegenerate`). For a ray
   /// meeting the triangle away from grazing, t is within a few ulps of the
   /// exact plane intersection (measured bounds in TriangleTests).
+  ///
+  /// Both methods run the same test; they differ in the geometric normal,
+  /// which the stable method takes from the vertices relative to the
+  /// ray's origin (as the watertight test sees them) and the naive one
+  /// from the vertices as given.
   public func intersect(
-    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar
+    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar,
+    method: IntersectionMethod
   ) -> Hit<Scalar>? {
     guard
       let hit = TriangleIntersection.intersect(
-        WatertightRay(ray), v0, v1, v2, after: tMin, before: tMax),
-      let geometric = geometricNormal
+        WatertightRay(ray), v0, v1, v2, after: tMin, before: tMax)
     else { return nil }
+    let seen =
+      method == .naive
+      ? self
+      : Triangle(v0 - ray.origin, v1 - ray.origin, v2 - ray.origin)
+    guard let geometric = seen.geometricNormal else { return nil }
     let normal = shadingNormal(
       u: hit.u, v: hit.v, w: hit.w, geometric: geometric)
     return Hit(

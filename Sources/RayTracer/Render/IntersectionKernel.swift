@@ -14,11 +14,8 @@ public struct CameraRay<Scalar: RayScalar>: Sendable {
     self.origin = origin
     self.direction = direction
     lengthSquared = direction.lengthSquared
-    // Camera rays are unit to within a few ulps: with a = 1 + δ, 2 − a is
-    // 1/a to within δ² < ε once |δ| < 2^−26, and saves a division per ray.
-    let deviation = lengthSquared - 1
     inverseLengthSquared =
-      deviation.magnitude < 0x1p-26 ? 1 - deviation : 1 / lengthSquared
+      SphereIntersection.inverseLengthSquared(lengthSquared)
   }
 }
 
@@ -105,10 +102,9 @@ public enum NaiveKernel<Scalar: RayScalar>: IntersectionKernel {
   public static func intersect(
     _ record: PlaneRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
   ) -> Scalar? {
-    let denominator = record.normal.dot(ray.direction)
-    guard denominator != 0 else { return nil }
-    let t = (record.offset - record.normal.dot(ray.origin)) / denominator
-    return t > 0 && t < tMax ? t : nil
+    PlaneIntersection.naiveT(
+      normal: record.normal, offset: record.offset, origin: ray.origin,
+      direction: ray.direction, after: 0, before: tMax)
   }
 
   public static func normal(_ record: PlaneRecord) -> Vector3<Scalar> {
@@ -167,10 +163,9 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
       ? Vector3(plane.normal - Vector3<Double>(normal)) : .zero
     let distance: Scalar = CameraRelative.plane(
       normal: plane.normal, offset: plane.offset, eye: eye)
-    let nonZero = [normal.x, normal.y, normal.z].filter { $0 != 0 }.count
     return PlaneRecord(
       normal: normal, normalTail: tail, distance: distance,
-      isAxisAligned: nonZero == 1 && tail == .zero)
+      isAxisAligned: PlaneIntersection.isAxisAligned(normal) && tail == .zero)
   }
 
   public static func centerAndRadius(_ record: SphereRecord) -> (Vector3<Scalar>, Scalar) {
@@ -191,55 +186,25 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
   /// Camera rays start at t = 0, so the root hit is the entering one exactly
   /// when the eye is outside the sphere (c > 0): with c < 0 the smaller root
   /// is negative, and with c = 0 it is zero, which is not > 0.
-  ///
-  /// For a sphere closer than 64 radii (c < 4095 r²) the hit point's offset
-  /// t·d − p is used directly: t's relative error ε becomes at most 64 ε in
-  /// the normal's direction (10⁻¹⁴ rad in Double, 4·10⁻⁶ rad in Float),
-  /// and it costs neither the closest-approach vector nor a square root.
-  /// Farther spheres, where that offset cancels, take `stableNormal`.
   @inline(__always)
   public static func normal(
     _ record: SphereRecord, _ ray: CameraRay<Scalar>, t: Scalar
   ) -> Vector3<Scalar> {
-    if record.c < 4095 * record.radiusSquared {
-      let scaled = (ray.direction * t - record.offset) * record.inverseRadius
-      let lengthSquared = scaled.lengthSquared
-      if (lengthSquared - 1).magnitude < Scalar.ulpOfOne.squareRoot() {
-        return scaled * (1.5 - 0.5 * lengthSquared)
-      }
-    }
-    return SphereIntersection.stableNormal(
+    SphereIntersection.stableNormal(
       direction: ray.direction, inverseLengthSquared: ray.inverseLengthSquared,
-      offset: record.offset, radiusSquared: record.radiusSquared,
-      inverseRadius: record.inverseRadius, entering: record.c > 0)
+      t: t, offset: record.offset, c: record.c,
+      radiusSquared: record.radiusSquared, inverseRadius: record.inverseRadius,
+      entering: record.c > 0)
   }
 
   @inline(__always)
   public static func intersect(
     _ record: PlaneRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
   ) -> Scalar? {
-    // n·d in working precision errs by at most γ₃·Σ|nᵢdᵢ| ≤ 4ε for unit
-    // vectors. Where |n·d| ≥ 1/4 that is a relative error of at most 16ε
-    // (about 1ε in practice) and the plain product stands; a clear sign
-    // against the plane's side is a miss; only rays within about 15° of
-    // the plane, where n·d cancels, pay for the compensated product
-    // (measured: it is three libm calls, 11 ns a ray, without FMA).
-    let plain = record.normal.dot(ray.direction)
-    let denominator: Scalar
-    if plain.magnitude >= 0.25 || record.isAxisAligned {
-      denominator = plain
-    } else if plain.magnitude > 8 * Scalar.ulpOfOne
-      && (plain > 0) != (record.distance > 0)
-    {
-      return nil
-    } else {
-      denominator =
-        Compensated.dot(record.normal, ray.direction)
-        + record.normalTail.dot(ray.direction)
-    }
-    guard denominator != 0 else { return nil }
-    let t = record.distance / denominator
-    return t > 0 && t < tMax ? t : nil
+    PlaneIntersection.stableT(
+      normal: record.normal, normalTail: record.normalTail,
+      distance: record.distance, isAxisAligned: record.isAxisAligned,
+      direction: ray.direction, after: 0, before: tMax)
   }
 
   public static func normal(_ record: PlaneRecord) -> Vector3<Scalar> {

@@ -100,32 +100,36 @@ public enum RenderJob {
     _ files: [OutputFile], _ depthRange: ClosedRange<Double>?,
     _ png: PNGOptions, _ progress: (@Sendable (Int) -> Void)?
   ) throws -> RenderReport {
+    let output = Output(
+      settings: settings, files: files, depthRange: depthRange, png: png)
+    if settings.engine == .course {
+      return try runCourse(scene, textures, output, progress)
+    }
     switch (settings.precision, settings.method) {
     case (.float, .naive):
-      return try run(
-        NaiveKernel<Float>.self, scene, textures, settings, files, depthRange, png,
-        progress)
+      return try run(NaiveKernel<Float>.self, scene, textures, output, progress)
     case (.float, .stable):
-      return try run(
-        StableKernel<Float>.self, scene, textures, settings, files, depthRange, png,
-        progress)
+      return try run(StableKernel<Float>.self, scene, textures, output, progress)
     case (.double, .naive):
-      return try run(
-        NaiveKernel<Double>.self, scene, textures, settings, files, depthRange, png,
-        progress)
+      return try run(NaiveKernel<Double>.self, scene, textures, output, progress)
     case (.double, .stable):
-      return try run(
-        StableKernel<Double>.self, scene, textures, settings, files, depthRange, png,
-        progress)
+      return try run(StableKernel<Double>.self, scene, textures, output, progress)
     }
+  }
+
+  /// What to write once the buffers are rendered.
+  private struct Output {
+    var settings: RenderSettings
+    var files: [OutputFile]
+    var depthRange: ClosedRange<Double>?
+    var png: PNGOptions
   }
 
   private static func run<Kernel: IntersectionKernel>(
     _ kernel: Kernel.Type, _ scene: Scene, _ textures: [Texture?],
-    _ settings: RenderSettings,
-    _ files: [OutputFile], _ depthRange: ClosedRange<Double>?, _ png: PNGOptions,
-    _ progress: (@Sendable (Int) -> Void)?
+    _ output: Output, _ progress: (@Sendable (Int) -> Void)?
   ) throws -> RenderReport {
+    let settings = output.settings
     var clock = Stopwatch()
     let compiled = CompiledScene<Kernel>(
       scene, textures: textures,
@@ -136,33 +140,101 @@ public enum RenderJob {
       projectionThreshold: settings.samples == 1
         ? settings.projectionThreshold ?? CompiledScene<Kernel>.projectionThreshold : .max)
     let compileSeconds = clock.lap()
-    var (lastBuffers, search) = Renderer.renderReportingSearch(
-      compiled, settings: settings, progress: progress)
-    let firstRenderSeconds = clock.lap()
-    var repeatedSeconds: [Double] = []
-    for _ in 0..<settings.repeats {
+    let rendered = repeatedly(
+      settings.repeats, progress: progress, clock: &clock
+    ) { progress in
+      Renderer.renderReportingSearch(
+        compiled, settings: settings, progress: progress)
+    }
+    var report = try write(
+      rendered.result.buffers, output, clock: &clock,
+      search: rendered.result.search, seconds: rendered.seconds,
+      compileSeconds: compileSeconds)
+    report.spheres = compiled.sphereCount
+    report.planes = compiled.planeCount
+    report.triangles = compiled.triangleCount
+    report.ellipsoids = compiled.ellipsoidCount
+    report.usesTriangleHierarchy = compiled.usesTriangleHierarchy
+    return report
+  }
+
+  /// The course engine's render (`CourseEngine`), written as the fast
+  /// engine's is.
+  private static func runCourse(
+    _ scene: Scene, _ textures: [Texture?], _ output: Output,
+    _ progress: (@Sendable (Int) -> Void)?
+  ) throws -> RenderReport {
+    var clock = Stopwatch()
+    let rendered = repeatedly(
+      output.settings.repeats, progress: progress, clock: &clock
+    ) { progress in
+      (
+        CourseEngine.render(
+          scene, textures: textures, settings: output.settings,
+          progress: progress),
+        .everyObject
+      )
+    }
+    var report = try write(
+      rendered.result.buffers, output, clock: &clock, search: .everyObject,
+      seconds: rendered.seconds, compileSeconds: 0)
+    let all = scene.root.flattened()
+    report.spheres = all.spheres.count
+    report.planes = all.planes.count
+    report.triangles = all.triangles.count
+    report.ellipsoids = all.transformedSpheres.count
+    return report
+  }
+
+  /// The first render (with `progress`), then `repeats` more: the last
+  /// buffers, the first render's time and the median of the others'.
+  private static func repeatedly<S: RayScalar>(
+    _ repeats: Int, progress: (@Sendable (Int) -> Void)?,
+    clock: inout Stopwatch,
+    _ render: ((@Sendable (Int) -> Void)?) -> Rendered<S>
+  ) -> (result: Rendered<S>, seconds: (first: Double, median: Double)) {
+    var result = render(progress)
+    let first = clock.lap()
+    var repeated: [Double] = []
+    for _ in 0..<repeats {
       // The previous render's buffers are freed before the clock starts:
       // unmapping them is not part of rendering the next.
-      lastBuffers = RenderBuffers(width: 0, height: 0)
+      result.buffers = RenderBuffers(width: 0, height: 0)
       _ = clock.lap()
-      (lastBuffers, search) = Renderer.renderReportingSearch(compiled, settings: settings)
-      repeatedSeconds.append(clock.lap())
+      result = render(nil)
+      repeated.append(clock.lap())
     }
-    let buffers = lastBuffers
-    let renderSeconds = repeatedSeconds.isEmpty ? firstRenderSeconds : median(repeatedSeconds)
+    return (result, (first, repeated.isEmpty ? first : median(repeated)))
+  }
+
+  private typealias Rendered<S: RayScalar> = (
+    buffers: RenderBuffers<S>, search: Renderer.SphereSearch
+  )
+
+  /// Encodes and writes every file from `buffers`, and reports.
+  private static func write<S: RayScalar>(
+    _ buffers: RenderBuffers<S>, _ output: Output, clock: inout Stopwatch,
+    search: Renderer.SphereSearch, seconds: (first: Double, median: Double),
+    compileSeconds: Double
+  ) throws -> RenderReport {
+    let (settings, files) = (output.settings, output.files)
     let usedRange =
       files.contains { $0.kind == .depth && $0.format.isEightBit }
-      ? settings.style.depthRange(buffers.depth, given: depthRange) : nil
+      ? settings.style.depthRange(buffers.depth, given: output.depthRange)
+      : nil
     // Each file is mapped and compressed on its own thread: with three
     // outputs this was as long as the render itself.
     let encodedFiles = EncodedFiles(count: files.count)
+    let png = output.png
     DispatchQueue.concurrentPerform(iterations: files.count) { index in
       let file = files[index]
       let bytes: [UInt8]
       if !file.format.isEightBit {
         bytes = encodeRaw(rawImage(file.kind, buffers), file.format)
       } else if file.kind == .depth {
-        bytes = encode(settings.style.depthImage(buffers, range: usedRange), file.format, png)
+        bytes = encode(
+          settings.style.depthImage(buffers, range: usedRange), file.format,
+          png)
       } else if file.kind == .normals {
         bytes = encode(settings.style.normalImage(buffers), file.format, png)
       } else {
@@ -170,16 +242,15 @@ public enum RenderJob {
       }
       encodedFiles.store(bytes, at: index)
     }
-    let encoded = files.indices.map { (encodedFiles.bytes(at: $0), files[$0].path) }
+    let encoded = files.indices.map {
+      (encodedFiles.bytes(at: $0), files[$0].path)
+    }
     try AtomicFile.writeAll(encoded)
     var report = RenderReport(
-      settings: settings, spheres: compiled.sphereCount, planes: compiled.planeCount,
-      sphereSearch: search, compileSeconds: compileSeconds,
-      renderSeconds: renderSeconds, writeSeconds: clock.lap(), depthRange: usedRange)
-    report.firstRenderSeconds = firstRenderSeconds
-    report.triangles = compiled.triangleCount
-    report.ellipsoids = compiled.ellipsoidCount
-    report.usesTriangleHierarchy = compiled.usesTriangleHierarchy
+      settings: settings, spheres: 0, planes: 0, sphereSearch: search,
+      compileSeconds: compileSeconds, renderSeconds: seconds.median,
+      writeSeconds: clock.lap(), depthRange: usedRange)
+    report.firstRenderSeconds = seconds.first
     return report
   }
 

@@ -26,6 +26,8 @@ public struct RenderSettings: Sendable {
   public var style: ImageStyle
   public var method: IntersectionMethod
   public var precision: Precision
+  /// Which renderer runs: the same image either way.
+  public var engine: Engine = .fast
   /// Worker threads; the image is the same, bit for bit, for any count.
   public var threads: Int
   /// Spheres from which a BVH is built.
@@ -59,6 +61,16 @@ public struct RenderSettings: Sendable {
     self.threads = threads
     self.hierarchyThreshold = hierarchyThreshold
   }
+}
+
+/// The two renderers, which draw the same images bit for bit.
+public enum Engine: String, CaseIterable, Sendable {
+  /// `Renderer`: the scene compiled into flat records for one precision,
+  /// searched through screen tiles or a hierarchy. The default.
+  case fast
+  /// `CourseEngine`: the course's loop over every object by the hit
+  /// protocol, in Double. The oracle, and the code to read.
+  case course
 }
 
 /// The reconstruction filter of supersampled shading.

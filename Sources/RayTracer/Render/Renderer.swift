@@ -18,6 +18,8 @@ public enum Renderer {
   /// How a render found each pixel's nearest sphere.
   public enum SphereSearch: Sendable, Equatable, CustomStringConvertible {
     case everySphere, culledPerTile, hierarchy, screenTiles
+    /// The course engine: every object of the group by the hit protocol.
+    case everyObject
 
     /// In words for `--stats`.
     public var description: String {
@@ -26,6 +28,7 @@ public enum Renderer {
       case .culledPerTile: "culling per tile"
       case .hierarchy: "BVH"
       case .screenTiles: "screen tiles"
+      case .everyObject: "the course engine, every object"
       }
     }
   }
@@ -327,44 +330,27 @@ public enum Renderer {
       lights: scene.lights, attenuate: attenuate)
   }
 
-  /// The pixel's colour from `settings.samples` jittered, stratified rays
-  /// through its filter's support, equally weighted. The jitter comes from
-  /// a generator seeded by the pixel's index, so the image is the same for
-  /// any thread count.
+  /// The pixel's colour: the mean of its samples' (`PixelSamples`).
   private static func supersampledColor<Kernel: IntersectionKernel, R: RayScalar>(
     column: Int, row: Int, scene: CompiledScene<Kernel>, camera: PerspectiveCamera<R>,
     settings: RenderSettings
   ) -> RGB<Kernel.Scalar> {
     typealias S = Kernel.Scalar
-    let (width, height) = (settings.width, settings.height)
-    let style = settings.style
-    let aspect = R(height) / R(width)
-    let centreX: R = style.screenX(column: column, width: width)
-    let centreY: R = style.screenY(row: row, height: height)
-    // One pixel in screen units: the distance between adjacent samples of
-    // the style's grid.
-    let stepX: R = width > 1 ? style.screenX(column: 1, width: width) - style.screenX(column: 0, width: width) : 2
-    let stepY: R = height > 1 ? style.screenY(row: 0, height: height) - style.screenY(row: 1, height: height) : 2
-    let strata = Int(Double(settings.samples).squareRoot())
-    var generator = SplitMix64(seed: UInt64(row * width + column) &* 0x9E37_79B9_7F4A_7C15)
     var sum = RGB<S>.zero
-    for stratumY in 0..<strata {
-      for stratumX in 0..<strata {
-        let u = (Double(stratumX) + Double.random(in: 0..<1, using: &generator)) / Double(strata)
-        let v = (Double(stratumY) + Double.random(in: 0..<1, using: &generator)) / Double(strata)
-        let x = centreX + R(settings.filter.offset(u)) * stepX
-        let y = centreY - R(settings.filter.offset(v)) * stepY
-        let direction = Vector3<S>(camera.rayDirection(x: x, y: y, aspect: aspect))
-        let ray = CameraRay(origin: scene.rayOrigin, direction: direction)
-        guard let hit = scene.nearest(ray) else {
-          sum += scene.background
-          continue
-        }
-        let normal = scene.normal(of: hit.what, ray, t: hit.t)
-        sum += shade(hit, ray: ray, normal: normal, scene: scene, attenuate: style == .mit)
+    var samples = PixelSamples(
+      column: column, row: row, camera: camera, settings: settings)
+    while let sample = samples.next() {
+      let ray = CameraRay(origin: scene.rayOrigin, direction: Vector3<S>(sample))
+      guard let hit = scene.nearest(ray) else {
+        sum += scene.background
+        continue
       }
+      let normal = scene.normal(of: hit.what, ray, t: hit.t)
+      sum += shade(
+        hit, ray: ray, normal: normal, scene: scene,
+        attenuate: settings.style == .mit)
     }
-    return sum / S(strata * strata)
+    return sum / S(samples.count)
   }
 
   /// Rows per batch: small enough to balance two threads on a 100-row image,
