@@ -330,6 +330,26 @@ final class CommandLineTests: XCTestCase {
     XCTAssertEqual(try read("t.png"), try read("p.png"))
   }
 
+  /// `--engine course` draws the default engine's image, says so in the
+  /// stats, and refuses Float (it computes in the scene's Double).
+  func testEngine_CourseDrawsTheSameImage() throws {
+    let scene = "scenes/mesh-and-transforms.txt"
+    try run([scene, "--size", "32", "24", "-o", folder + "/fast.png"])
+    let course = try run([
+      scene, "--size", "32", "24", "-o", folder + "/course.png", "--engine",
+      "course", "--stats",
+    ])
+    XCTAssertEqual(course.status, 0, course.stderr)
+    XCTAssertTrue(course.stderr.contains("engine course"), course.stderr)
+    XCTAssertEqual(try read("fast.png"), try read("course.png"))
+    let float = try run([
+      scene, "-o", folder + "/f.png", "--engine", "course", "--precision",
+      "float",
+    ])
+    XCTAssertEqual(float.status, 64, float.stderr)
+    XCTAssertTrue(float.stderr.contains("--engine course"), float.stderr)
+  }
+
   /// Textures are read only for a shaded image, and the stats say so; an
   /// unreadable texture is one line naming it, exit 1, nothing written.
   func testTextures_ReadOnlyWhenShaded() throws {

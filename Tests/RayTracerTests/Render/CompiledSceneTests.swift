@@ -13,13 +13,10 @@ final class CompiledSceneTests: XCTestCase {
     return parts.joined(separator: "/") + "/scenes"
   }
 
-  /// Bounds: t within 1e-13 relative (about 450 ε) and normals within
-  /// 1e-10 degrees. The two paths trace rays that differ by an ulp or two
-  /// (the render normalises by a reciprocal) and compute transformed
-  /// geometry in different orders, which a pixel near a silhouette, where
-  /// t is ill-conditioned, could amplify. Measured: at most 8.1e-16 (4 ε)
-  /// in t and 5.3e-13° in the normal, no disagreement. Hit/miss may differ
-  /// only on silhouette pixels: at most 1% of the image.
+  /// The compiled scene's depth and normals are the model's, bit for bit:
+  /// the same functions on the same numbers (see `CourseEngine`), here
+  /// with the hierarchy thresholds of `CompiledScene`'s defaults rather
+  /// than the command line's.
   func compare(_ name: String, width: Int = 48, height: Int = 36) throws {
     let scene = try SceneParser.parse(contentsOf: "\(Self.scenesFolder)/\(name).txt")
     let settings = RenderSettings(
@@ -27,9 +24,7 @@ final class CompiledSceneTests: XCTestCase {
     let buffers = Renderer.render(CompiledScene<StableKernel<Double>>(scene), settings: settings)
     let camera = scene.camera
     let aspect = Double(height) / Double(width)
-    var disagreements = 0
-    var worstT = 0.0
-    var worstAngle = 0.0
+    var hits = 0
     for row in 0..<height {
       for column in 0..<width {
         let x: Double = ImageStyle.course.screenX(column: column, width: width)
@@ -37,20 +32,12 @@ final class CompiledSceneTests: XCTestCase {
         let ray = Ray(origin: camera.center, direction: camera.rayDirection(x: x, y: y, aspect: aspect))
         let hit = scene.root.intersect(ray, after: 0, before: .infinity)
         let pixel = row * width + column
-        let t = buffers.depth[pixel]
-        guard let hit, t.isFinite else {
-          if (hit != nil) != t.isFinite { disagreements += 1 }
-          continue
-        }
-        worstT = max(worstT, abs(t - hit.t) / hit.t)
-        worstAngle = max(worstAngle, angleInDegrees(buffers.normals[pixel], hit.normal))
+        XCTAssertEqual(buffers.depth[pixel], hit?.t ?? .infinity, "\(name) t at \(pixel)")
+        XCTAssertEqual(buffers.normals[pixel], hit?.normal ?? .zero, "\(name) normal at \(pixel)")
+        if hit != nil { hits += 1 }
       }
     }
-    print("\(name): worst relative error of t \(worstT), normal \(worstAngle)°, \(disagreements) disagreements")
-    XCTAssertLessThanOrEqual(worstT, 1e-13, "\(name): relative error of t")
-    XCTAssertLessThanOrEqual(worstAngle, 1e-10, "\(name): normal error in degrees")
-    XCTAssertLessThanOrEqual(
-      disagreements, width * height / 100, "\(name): hit/miss disagreements")
+    XCTAssertGreaterThan(hits, 0, "\(name) shows something")
   }
 
   func testCompiled_MatchesTheModel_MeshAndTransforms() throws {
