@@ -50,8 +50,8 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
 
   /// - Parameters:
   ///   - hierarchyThreshold: the sphere count from which a BVH is built
-  ///     (see `BoundingVolumeHierarchy.defaultThreshold`, and
-  ///     `tileCulledThreshold` for renders that cull per tile).
+  ///     (see `BoundingVolumeHierarchy.defaultThreshold`); below it,
+  ///     spheres are culled per tile.
   ///   - projectionThreshold: the sphere count from which spheres are left
   ///     in scene order for `ScreenTiles`, with neither a BVH nor culling
   ///     data; only for single-sample renders, whose rays all pass through
@@ -111,25 +111,6 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     hierarchy = bvh
     wideHierarchy = WideHierarchy(bvh, rayOrigin: rayOrigin)
     projectsSpheres = false
-  }
-
-  /// A sphere's centre relative to the rays' origin and the distance from
-  /// it that any pixel's ray the kernel reports hitting the sphere comes
-  /// within: the hierarchy's reach, plus the rounding of the ray's own
-  /// direction (64 ε of the render's precision times the distance).
-  @inline(__always)
-  func cullBound(_ record: Kernel.SphereRecord) -> (center: Vector3<Double>, radius: Double) {
-    let model: BoundingVolumeHierarchy<Scalar>.ErrorModel =
-      Kernel.self == StableKernel<Scalar>.self ? .cancellationFree : .textbook
-    let (center, radius) = Kernel.centerAndRadius(record)
-    let offset = center - rayOrigin
-    let reach = Double(
-      BoundingVolumeHierarchy<Scalar>.reach(
-        radius: radius.magnitude, distance: offset.length * (1 + 8 * Scalar.ulpOfOne),
-        model: model))
-    let centre = Vector3<Double>(offset)
-    let slack = 64 * Double(Scalar.ulpOfOne)
-    return (centre, reach + slack * (centre.length + reach) + 1e-300)
   }
 
   /// `transform` of each element in order, on two threads from 2¹⁶
@@ -227,69 +208,11 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     }
   }
 
-  /// Writes into `candidates`, in scene order, the spheres that some ray
-  /// through the pyramid from the rays' origin spanned by `corners` (unit
-  /// directions in order around it) may hit, and returns their count.
-  ///
-  /// A sphere is left out only when its `cullBound` lies wholly outside
-  /// one of the pyramid's faces, so the nearest hit of every ray in the
-  /// tile is the same as testing every sphere.
-  func cullSpheres(
-    corners: (Vector3<Double>, Vector3<Double>, Vector3<Double>, Vector3<Double>),
-    into candidates: UnsafeMutableBufferPointer<Int32>
-  ) -> Int {
-    // Four faces in a tuple: this runs for every tile, and arrays here
-    // were an allocation or two per 64 pixels.
-    let middle = corners.0 + corners.1 + corners.2 + corners.3
-    func face(_ a: Vector3<Double>, _ b: Vector3<Double>) -> Vector3<Double> {
-      let normal = a.cross(b)
-      let length = normal.length
-      guard length > 1e-300, length.isFinite else { return .zero }
-      let unit = normal / length
-      return unit.dot(middle) < 0 ? -unit : unit
-    }
-    let faces = (
-      face(corners.0, corners.1), face(corners.1, corners.2),
-      face(corners.2, corners.3), face(corners.3, corners.0)
-    )
-    // A degenerate edge's face is zero, which excludes nothing.
-    var count = 0
-    for sphere in cullCenters.indices {
-      let center = cullCenters[sphere]
-      let margin = cullRadii[sphere]
-      let outside =
-        faces.0.dot(center) < -margin || faces.1.dot(center) < -margin
-        || faces.2.dot(center) < -margin || faces.3.dot(center) < -margin
-      if !outside {
-        candidates[count] = Int32(truncatingIfNeeded: sphere)
-        count += 1
-      }
-    }
-    return count
-  }
-
-  /// The sphere count from which a hierarchy beats the flat loop when the
-  /// loop culls spheres per tile (single-sample renders). Measured at
-  /// 1920×1080, depth and normals, one thread, random spheres as
-  /// `gen_spheres.py` lays them out (seed 1), with the four-wide hierarchy:
-  /// culling 138 / 137 / 180 / 221 / 375 ms at 200 / 400 / 700 / 1,000 /
-  /// 2,000 spheres against the hierarchy's 178 / 195 / 215 / 251 / 258 ms:
-  /// they cross near 1,300.
-  public static var tileCulledThreshold: Int { 1300 }
-
   /// The sphere count from which single-sample renders project spheres
   /// onto screen tiles (`ScreenTiles`) rather than cull them per tile or
-  /// build a hierarchy. Measured at 1920×1080, depth and normals, one
-  /// thread, random spheres as `gen_spheres.py` lays them out (seed 1):
-  /// projection 74 / 82 / 92 / 96 / 124 / 101 / 99 / 102 ms at 100 / 200
-  /// / 400 / 700 / 1,000 / 2,000 / 4,000 / 10,000 spheres, culling 73 /
-  /// 83 / 101 / 122 / 135 / 199 / 398 / 937 ms, the hierarchy 146 / 180 /
-  /// 200 / 214 / 222 / 254 / 298 / 354 ms (render only, its build not
-  /// counted). Culling wins below about 200 spheres; they tie near 300.
+  /// build a hierarchy: where projection and culling tie (measurements in
+  /// docs/PERFORMANCE.md, "Thresholds").
   public static var projectionThreshold: Int { 300 }
-
-  /// Whether per-tile culling applies: spheres without a hierarchy.
-  var cullsPerTile: Bool { hierarchy == nil && !projectsSpheres && spheres.count > 1 }
 
   public var triangleCount: Int { triangles.count }
   public var ellipsoidCount: Int { ellipsoids.count }
@@ -426,94 +349,5 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     material.diffuse = texture.color(
       at: coordinates.at(u: weights.u, v: weights.v, w: weights.w))
     return material
-  }
-}
-
-/// A triangle as the loop tests it: vertices in the kernel's frame.
-struct TriangleRecord<Scalar: RayScalar>: Sendable {
-  var v0: Vector3<Scalar>
-  var v1: Vector3<Scalar>
-  var v2: Vector3<Scalar>
-  var normals: Triangle<Scalar>.VertexNormals?
-  /// The winding's unit normal; nil for a degenerate triangle.
-  var geometricNormal: Vector3<Scalar>?
-
-  init(
-    v0: Vector3<Scalar>, v1: Vector3<Scalar>, v2: Vector3<Scalar>,
-    normals: Triangle<Scalar>.VertexNormals?
-  ) {
-    self.v0 = v0
-    self.v1 = v1
-    self.v2 = v2
-    self.normals = normals
-    geometricNormal = Triangle(v0, v1, v2).geometricNormal
-  }
-
-  /// The barycentric weights of v0, v1, v2 where `ray` hits (the same
-  /// computation as the hit's, so the same values), or nil on a miss.
-  func barycentrics(
-    of ray: CameraRay<Scalar>
-  ) -> (u: Scalar, v: Scalar, w: Scalar)? {
-    let prepared = WatertightRay(
-      Ray(origin: ray.origin, direction: ray.direction))
-    guard let hit = intersect(prepared, before: .infinity) else { return nil }
-    return (hit.u, hit.v, hit.w)
-  }
-
-  @inline(__always)
-  func intersect(
-    _ ray: WatertightRay<Scalar>, before tMax: Scalar
-  ) -> (t: Scalar, u: Scalar, v: Scalar, w: Scalar)? {
-    TriangleIntersection.intersect(ray, v0, v1, v2, after: 0, before: tMax)
-  }
-
-  /// The normal where `ray` hits: the barycentrics are found again (the
-  /// same computation as the hit's, so the same values).
-  func normal(of ray: CameraRay<Scalar>) -> Vector3<Scalar> {
-    let geometric = geometricNormal ?? .zero
-    guard normals != nil else { return geometric }
-    let prepared = WatertightRay(Ray(origin: ray.origin, direction: ray.direction))
-    guard let hit = intersect(prepared, before: .infinity) else { return geometric }
-    return normal(u: hit.u, v: hit.v, w: hit.w)
-  }
-
-  func normal(u: Scalar, v: Scalar, w: Scalar) -> Vector3<Scalar> {
-    let geometric = geometricNormal ?? .zero
-    guard let normals else { return geometric }
-    let blended = normals.n0 * u + normals.n1 * v + normals.n2 * w
-    guard blended.maxMagnitude > 0, blended.isFinite else { return geometric }
-    return blended.normalized()
-  }
-}
-
-/// Triangles tested against one prepared ray, for the hierarchy.
-struct TriangleLeaves<Scalar: RayScalar>: LeafPrimitives {
-  let records: UnsafeBufferPointer<TriangleRecord<Scalar>>
-  let ray: WatertightRay<Scalar>
-
-  @inline(__always)
-  func intersect(_ position: Int, before tMax: Scalar) -> Scalar? {
-    records[position].intersect(ray, before: tMax)?.t
-  }
-}
-
-/// A sphere under a non-similarity transform, stored in its own space:
-/// rays are carried there by M⁻¹ (direction not renormalised, so t is the
-/// world t) and the kernel's sphere test runs unchanged.
-struct EllipsoidRecord<Kernel: IntersectionKernel>: Sendable {
-  typealias Scalar = Kernel.Scalar
-  var sphere: Kernel.SphereRecord
-  /// The eye in object space, in the kernel's frame.
-  var origin: Vector3<Scalar>
-  /// The rows of M⁻¹'s linear part.
-  var inverseRows: (Vector3<Scalar>, Vector3<Scalar>, Vector3<Scalar>)
-  var matrix: Matrix4<Scalar>
-
-  @inline(__always)
-  func localRay(_ ray: CameraRay<Scalar>) -> CameraRay<Scalar> {
-    let d = ray.direction
-    return CameraRay(
-      origin: origin,
-      direction: Vector3(inverseRows.0.dot(d), inverseRows.1.dot(d), inverseRows.2.dot(d)))
   }
 }

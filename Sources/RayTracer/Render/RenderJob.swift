@@ -133,10 +133,12 @@ public enum RenderJob {
     var clock = Stopwatch()
     let compiled = CompiledScene<Kernel>(
       scene, textures: textures,
+      // Single-sample renders cull spheres per tile below the projection
+      // threshold and project them above it, building a hierarchy only
+      // where the projection declines (`Renderer.renderReportingSearch`).
       hierarchyThreshold: settings.hierarchyThreshold
         ?? (settings.samples == 1
-          ? CompiledScene<Kernel>.tileCulledThreshold
-          : BoundingVolumeHierarchy<Kernel.Scalar>.defaultThreshold),
+          ? .max : BoundingVolumeHierarchy<Kernel.Scalar>.defaultThreshold),
       projectionThreshold: settings.samples == 1
         ? settings.projectionThreshold ?? CompiledScene<Kernel>.projectionThreshold : .max)
     let compileSeconds = clock.lap()
@@ -309,26 +311,5 @@ private final class EncodedFiles: @unchecked Sendable {
 
   func bytes(at index: Int) -> [UInt8] {
     slots[index]
-  }
-}
-
-/// Wall-clock intervals from a monotonic clock.
-public struct Stopwatch {
-  private var last = Stopwatch.now()
-
-  public init() {}
-
-  /// Seconds since the previous lap (or since creation), and starts a new one.
-  public mutating func lap() -> Double {
-    let now = Stopwatch.now()
-    defer { last = now }
-    return now - last
-  }
-
-  /// Seconds on the monotonic clock since an arbitrary start.
-  public static func now() -> Double {
-    var time = timespec()
-    clock_gettime(CLOCK_MONOTONIC, &time)
-    return Double(time.tv_sec) + Double(time.tv_nsec) * 1e-9
   }
 }

@@ -51,17 +51,8 @@ public struct BoundingVolumeHierarchy<Scalar: RayScalar>: Sendable {
   /// The sphere count from which a render builds the hierarchy: below it,
   /// testing every sphere is about as fast or faster.
   ///
-  /// Measured with a release build on the project's 2-core Linux machine,
-  /// one render thread, by a scratch benchmark compiled into a copy of this
-  /// module: 384×384 depth-only camera rays through random scenes of n
-  /// spheres (radii 0.2–1 or 1–4 in a 20-unit cube, or 0.1–0.5 in a
-  /// 40-unit cube, 30 units from the eye; three seeds each), the flat loop
-  /// against the hierarchy, thread CPU time, best of five. The hierarchy
-  /// broke even at 6–10 spheres with the stable kernel in Float and below
-  /// 4 in Double (whose flat loop costs about 4× Float's per sphere), and
-  /// at 16–32 with the textbook kernel, whose flat loop is the cheapest.
-  /// At 12 the stable kernel gains 1.1–1.5× (Float) and 2.5–3.3× (Double),
-  /// and the textbook kernel loses at most 20% short of its break-even.
+  /// Measured where the hierarchy breaks even against the flat loop:
+  /// docs/PERFORMANCE.md, "Thresholds".
   public static var defaultThreshold: Int { 12 }
 
   /// One node: 32 bytes in Float, 56 in Double.

@@ -52,13 +52,7 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
   let coveredPixels: Int
 
   /// Where a hierarchy wins: boxes summing to more than this many times
-  /// the image's pixels. Measured at 1920×1080, depth and normals, one
-  /// thread, render time only (the hierarchy's build not counted), random
-  /// spheres as `gen_spheres.py` lays them out with larger radii: at
-  /// overlaps of 4.4 / 9.9 / 16 / 34 / 38 / 41 / 56 the tiles took 156 /
-  /// 241 / 273 / 318 / 329 / 429 / 381 ms and the hierarchy 259 / 294 /
-  /// 276 / 315 / 324 / 369 / 377 ms (2,000 to 100,000 spheres). The
-  /// default (1.2) is far below.
+  /// the image's pixels (measured: docs/PERFORMANCE.md, "Thresholds").
   static var overlapLimit: Int { 32 }
 
   func entries(ofTileAt column: Int, row: Int) -> ArraySlice<Entry> {

@@ -1,0 +1,88 @@
+/// A triangle as the loop tests it: vertices in the kernel's frame.
+struct TriangleRecord<Scalar: RayScalar>: Sendable {
+  var v0: Vector3<Scalar>
+  var v1: Vector3<Scalar>
+  var v2: Vector3<Scalar>
+  var normals: Triangle<Scalar>.VertexNormals?
+  /// The winding's unit normal; nil for a degenerate triangle.
+  var geometricNormal: Vector3<Scalar>?
+
+  init(
+    v0: Vector3<Scalar>, v1: Vector3<Scalar>, v2: Vector3<Scalar>,
+    normals: Triangle<Scalar>.VertexNormals?
+  ) {
+    self.v0 = v0
+    self.v1 = v1
+    self.v2 = v2
+    self.normals = normals
+    geometricNormal = Triangle(v0, v1, v2).geometricNormal
+  }
+
+  /// The barycentric weights of v0, v1, v2 where `ray` hits (the same
+  /// computation as the hit's, so the same values), or nil on a miss.
+  func barycentrics(
+    of ray: CameraRay<Scalar>
+  ) -> (u: Scalar, v: Scalar, w: Scalar)? {
+    let prepared = WatertightRay(
+      Ray(origin: ray.origin, direction: ray.direction))
+    guard let hit = intersect(prepared, before: .infinity) else { return nil }
+    return (hit.u, hit.v, hit.w)
+  }
+
+  @inline(__always)
+  func intersect(
+    _ ray: WatertightRay<Scalar>, before tMax: Scalar
+  ) -> (t: Scalar, u: Scalar, v: Scalar, w: Scalar)? {
+    TriangleIntersection.intersect(ray, v0, v1, v2, after: 0, before: tMax)
+  }
+
+  /// The normal where `ray` hits: the barycentrics are found again (the
+  /// same computation as the hit's, so the same values).
+  func normal(of ray: CameraRay<Scalar>) -> Vector3<Scalar> {
+    let geometric = geometricNormal ?? .zero
+    guard normals != nil else { return geometric }
+    let prepared = WatertightRay(Ray(origin: ray.origin, direction: ray.direction))
+    guard let hit = intersect(prepared, before: .infinity) else { return geometric }
+    return normal(u: hit.u, v: hit.v, w: hit.w)
+  }
+
+  func normal(u: Scalar, v: Scalar, w: Scalar) -> Vector3<Scalar> {
+    let geometric = geometricNormal ?? .zero
+    guard let normals else { return geometric }
+    let blended = normals.n0 * u + normals.n1 * v + normals.n2 * w
+    guard blended.maxMagnitude > 0, blended.isFinite else { return geometric }
+    return blended.normalized()
+  }
+}
+
+/// Triangles tested against one prepared ray, for the hierarchy.
+struct TriangleLeaves<Scalar: RayScalar>: LeafPrimitives {
+  let records: UnsafeBufferPointer<TriangleRecord<Scalar>>
+  let ray: WatertightRay<Scalar>
+
+  @inline(__always)
+  func intersect(_ position: Int, before tMax: Scalar) -> Scalar? {
+    records[position].intersect(ray, before: tMax)?.t
+  }
+}
+
+/// A sphere under a non-similarity transform, stored in its own space:
+/// rays are carried there by M⁻¹ (direction not renormalised, so t is the
+/// world t) and the kernel's sphere test runs unchanged.
+struct EllipsoidRecord<Kernel: IntersectionKernel>: Sendable {
+  typealias Scalar = Kernel.Scalar
+  var sphere: Kernel.SphereRecord
+  /// The eye in object space, in the kernel's frame.
+  var origin: Vector3<Scalar>
+  /// The rows of M⁻¹'s linear part.
+  var inverseRows: (Vector3<Scalar>, Vector3<Scalar>, Vector3<Scalar>)
+  var matrix: Matrix4<Scalar>
+
+  @inline(__always)
+  func localRay(_ ray: CameraRay<Scalar>) -> CameraRay<Scalar> {
+    let d = ray.direction
+    return CameraRay(
+      origin: origin,
+      direction: Vector3(inverseRows.0.dot(d), inverseRows.1.dot(d), inverseRows.2.dot(d)))
+  }
+}

@@ -1,0 +1,72 @@
+/// What a pixel's nearest hit becomes: its depth, normal and colour, and
+/// the colour of a supersampled pixel.
+extension Renderer {
+  /// Writes a pixel's requested outputs from its nearest hit (nil: none).
+  /// `sphereRecord`, when given, is a copy of the record of the sphere the
+  /// search found, for the normal if that sphere is still the nearest.
+  @inline(__always)
+  static func store<Kernel: IntersectionKernel>(
+    _ hit: (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest)?,
+    ray: CameraRay<Kernel.Scalar>, pixel: Int, scene: CompiledScene<Kernel>,
+    settings: RenderSettings, targets: Targets<Kernel.Scalar>,
+    sphereRecord: Kernel.SphereRecord? = nil
+  ) {
+    let wantsDepth = targets.depth.count > 0
+    let wantsNormals = targets.normals.count > 0
+    let shadeCentre = targets.color.count > 0 && settings.samples == 1
+    guard let hit else {
+      if wantsDepth { targets.depth[pixel] = .infinity }
+      if wantsNormals { targets.normals[pixel] = .zero }
+      if shadeCentre { targets.color[pixel] = scene.background }
+      return
+    }
+    if wantsDepth { targets.depth[pixel] = hit.t }
+    guard wantsNormals || shadeCentre else { return }
+    let normal: Vector3<Kernel.Scalar>
+    if case .sphere = hit.what, let sphereRecord {
+      normal = Kernel.normal(sphereRecord, ray, t: hit.t)
+    } else {
+      normal = scene.normal(of: hit.what, ray, t: hit.t)
+    }
+    if wantsNormals { targets.normals[pixel] = normal }
+    if shadeCentre {
+      targets.color[pixel] = shade(
+        hit, ray: ray, normal: normal, scene: scene, attenuate: settings.style == .mit)
+    }
+  }
+
+  @inline(__always)
+  static func shade<Kernel: IntersectionKernel>(
+    _ hit: (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest),
+    ray: CameraRay<Kernel.Scalar>, normal: Vector3<Kernel.Scalar>,
+    scene: CompiledScene<Kernel>, attenuate: Bool
+  ) -> RGB<Kernel.Scalar> {
+    scene.shadingMaterial(of: hit.what, ray).shade(
+      point: scene.eye + ray.direction * hit.t, normal: normal,
+      viewDirection: ray.direction, ambient: scene.ambient,
+      lights: scene.lights, attenuate: attenuate)
+  }
+
+  /// The pixel's colour: the mean of its samples' (`PixelSamples`).
+  static func supersampledColor<Kernel: IntersectionKernel, R: RayScalar>(
+    column: Int, row: Int, scene: CompiledScene<Kernel>, camera: PerspectiveCamera<R>,
+    settings: RenderSettings
+  ) -> RGB<Kernel.Scalar> {
+    typealias S = Kernel.Scalar
+    var sum = RGB<S>.zero
+    var samples = PixelSamples(
+      column: column, row: row, camera: camera, settings: settings)
+    while let sample = samples.next() {
+      let ray = CameraRay(origin: scene.rayOrigin, direction: Vector3<S>(sample))
+      guard let hit = scene.nearest(ray) else {
+        sum += scene.background
+        continue
+      }
+      let normal = scene.normal(of: hit.what, ray, t: hit.t)
+      sum += shade(
+        hit, ray: ray, normal: normal, scene: scene,
+        attenuate: settings.style == .mit)
+    }
+    return sum / S(samples.count)
+  }
+}

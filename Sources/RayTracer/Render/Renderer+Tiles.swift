@@ -1,0 +1,157 @@
+/// The pixel loop: rows in tiles, each tile's rays generated together,
+/// then each pixel's nearest hit by the scene's sphere search.
+extension Renderer {
+  /// Columns per tile: with a batch's rows, the tiles whose spheres are
+  /// culled together (scenes without a hierarchy).
+  static let tileWidth = 16
+
+  /// Renders a batch of rows, tile by tile when the scene culls spheres per
+  /// tile: each tile tests only the spheres its rays may hit.
+  static func renderRows<Kernel: IntersectionKernel, R: RayScalar>(
+    _ rows: Range<Int>, _ columns: UnsafeBufferPointer<R>, _ scene: CompiledScene<Kernel>,
+    _ camera: PerspectiveCamera<R>, _ settings: RenderSettings, _ tiles: ScreenTiles<Kernel>?,
+    _ targets: Targets<Kernel.Scalar>
+  ) {
+    if let tiles {
+      let width = ScreenTiles<Kernel>.tileWidth
+      for start in stride(from: 0, to: settings.width, by: width) {
+        renderProjectedTile(
+          tiles.entries(ofTileAt: start, row: rows.lowerBound),
+          columns: start..<min(start + width, settings.width), rows: rows,
+          columns, scene, camera, settings, targets)
+      }
+      return
+    }
+    // Supersampled rays leave the pixel centres' frusta: no culling then.
+    guard scene.cullsPerTile && settings.samples == 1 else {
+      // Tile by tile all the same: neighbouring rays visit the same nodes
+      // and spheres, which then stay in cache.
+      for start in stride(from: 0, to: settings.width, by: tileWidth) {
+        let tile = start..<min(start + tileWidth, settings.width)
+        for row in rows {
+          renderRow(row, tile, nil, columns, scene, camera, settings, targets)
+        }
+      }
+      return
+    }
+    let aspect = R(settings.height) / R(settings.width)
+    let top: R = settings.style.screenY(row: rows.lowerBound, height: settings.height)
+    let bottom: R = settings.style.screenY(row: rows.upperBound - 1, height: settings.height)
+    withUnsafeTemporaryAllocation(of: Int32.self, capacity: scene.sphereCount) { candidates in
+      for start in stride(from: 0, to: settings.width, by: tileWidth) {
+        let tile = start..<min(start + tileWidth, settings.width)
+        let (left, right) = (columns[tile.lowerBound], columns[tile.upperBound - 1])
+        func corner(_ x: R, _ y: R) -> Vector3<Double> {
+          Vector3<Double>(camera.rayDirection(x: x, y: y, aspect: aspect))
+        }
+        let corners = (
+          corner(left, top), corner(right, top), corner(right, bottom), corner(left, bottom)
+        )
+        let count = scene.cullSpheres(corners: corners, into: candidates)
+        let chosen = UnsafeBufferPointer(rebasing: candidates[0..<count])
+        for row in rows {
+          renderRow(row, tile, chosen, columns, scene, camera, settings, targets)
+        }
+      }
+    }
+  }
+
+  static func renderRow<Kernel: IntersectionKernel, R: RayScalar>(
+    _ row: Int, _ tile: Range<Int>, _ candidates: UnsafeBufferPointer<Int32>?,
+    _ columns: UnsafeBufferPointer<R>, _ scene: CompiledScene<Kernel>,
+    _ camera: PerspectiveCamera<R>, _ settings: RenderSettings,
+    _ targets: Targets<Kernel.Scalar>
+  ) {
+    typealias S = Kernel.Scalar
+    let width = settings.width
+    let style = settings.style
+    let aspect = R(settings.height) / R(width)
+    let y: R = style.screenY(row: row, height: settings.height)
+    let rowBase = camera.rowBase(y: y, aspect: aspect)
+    let wantsColor = targets.color.count > 0
+    // The tile's directions first, in a loop without calls, so that the
+    // processor overlaps one pixel's square root and division with the
+    // next one's instead of waiting on each behind a traversal. At most
+    // 16 vectors: 768 bytes in Float80, on the stack.
+    precondition(tile.count <= tileWidth)
+    withUnsafeTemporaryAllocation(of: Vector3<S>.self, capacity: tileWidth) { directions in
+      for column in tile {
+        (directions.baseAddress! + (column - tile.lowerBound)).initialize(
+          to: Vector3<S>(camera.rayDirection(x: columns[column], rowBase: rowBase)))
+      }
+      for column in tile {
+        let direction = directions[column - tile.lowerBound]
+        let ray = CameraRay(origin: scene.rayOrigin, direction: direction)
+        let pixel = row * width + column
+        if wantsColor && settings.samples > 1 {
+          targets.color[pixel] = supersampledColor(
+            column: column, row: row, scene: scene, camera: camera, settings: settings)
+        }
+        let hit = scene.nearest(ray, candidates: candidates)
+        store(hit, ray: ray, pixel: pixel, scene: scene, settings: settings, targets: targets)
+      }
+    }
+  }
+
+  /// Renders one tile of `ScreenTiles`: each sphere tested only against the
+  /// rays of its box's pixels, in scene order with the flat loop's strict
+  /// `<`, then each pixel's search continued past the spheres.
+  static func renderProjectedTile<Kernel: IntersectionKernel, R: RayScalar>(
+    _ entries: ArraySlice<ScreenTiles<Kernel>.Entry>, columns tileColumns: Range<Int>, rows: Range<Int>,
+    _ columns: UnsafeBufferPointer<R>, _ scene: CompiledScene<Kernel>,
+    _ camera: PerspectiveCamera<R>, _ settings: RenderSettings,
+    _ targets: Targets<Kernel.Scalar>
+  ) {
+    typealias S = Kernel.Scalar
+    let aspect = R(settings.height) / R(settings.width)
+    let capacity = ScreenTiles<Kernel>.tileWidth * ScreenTiles<Kernel>.tileHeight
+    precondition(tileColumns.count <= ScreenTiles<Kernel>.tileWidth && rows.count <= ScreenTiles<Kernel>.tileHeight)
+    withUnsafeTemporaryAllocation(of: CameraRay<S>.self, capacity: capacity) { rays in
+      withUnsafeTemporaryAllocation(of: S.self, capacity: capacity) { nearestT in
+        withUnsafeTemporaryAllocation(of: Int32.self, capacity: capacity) { nearestEntry in
+          for row in rows {
+            let y: R = settings.style.screenY(row: row, height: settings.height)
+            let rowBase = camera.rowBase(y: y, aspect: aspect)
+            for column in tileColumns {
+              let slot = (row - rows.lowerBound) * ScreenTiles<Kernel>.tileWidth + column - tileColumns.lowerBound
+              (rays.baseAddress! + slot).initialize(
+                to: CameraRay(
+                  origin: scene.rayOrigin,
+                  direction: Vector3<S>(camera.rayDirection(x: columns[column], rowBase: rowBase))))
+              (nearestT.baseAddress! + slot).initialize(to: .infinity)
+              (nearestEntry.baseAddress! + slot).initialize(to: -1)
+            }
+          }
+          // The nearest entry rather than sphere: its copy of the record is
+          // in cache for the normal, the scene's is not.
+          let entryBase = entries.startIndex
+          for position in entries.indices {
+            let entry = entries[position]
+            let record = entry.record
+            for row in Int(entry.firstRow)...Int(entry.lastRow) {
+              for column in Int(entry.firstColumn)...Int(entry.lastColumn) {
+                let slot = row * ScreenTiles<Kernel>.tileWidth + column
+                if let t = Kernel.intersect(record, rays[slot], before: nearestT[slot]) {
+                  nearestT[slot] = t
+                  nearestEntry[slot] = Int32(truncatingIfNeeded: position - entryBase)
+                }
+              }
+            }
+          }
+          for row in rows {
+            for column in tileColumns {
+              let slot = (row - rows.lowerBound) * ScreenTiles<Kernel>.tileWidth + column - tileColumns.lowerBound
+              let position = Int(nearestEntry[slot])
+              let entry = position >= 0 ? entries[entryBase + position] : nil
+              let hit = scene.nearest(
+                rays[slot], beyondSpheres: nearestT[slot], entry.map { .sphere(Int($0.sphere)) })
+              store(
+                hit, ray: rays[slot], pixel: row * settings.width + column, scene: scene,
+                settings: settings, targets: targets, sphereRecord: entry?.record)
+            }
+          }
+        }
+      }
+    }
+  }
+}
