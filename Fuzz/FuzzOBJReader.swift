@@ -16,8 +16,10 @@ public func fuzzOBJReader(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt {
     mesh = try OBJReader.parse(bytes: bytes, file: "mesh.obj")
   } catch {
     let description = error.description
-    guard description.hasPrefix("mesh.obj:\(error.line):\(error.column): error: "),
-      !description.contains("\n")
+    guard
+      description.utf8.starts(
+        with: "mesh.obj:\(error.line):\(error.column): error: ".utf8),
+      !description.utf8.contains(UInt8(ascii: "\n"))
     else { fatalError("fuzz invariant: malformed error \(description.debugDescription)") }
     let lines = bytes.split(separator: UInt8(ascii: "\n"), omittingEmptySubsequences: false)
     guard (1...lines.count).contains(error.line),
