@@ -170,16 +170,14 @@ struct Render: ParsableCommand {
       guard let path else { continue }
       guard let file = OutputFile(kind: kind, path: path) else {
         throw ValidationError(
-          "Cannot tell the format of '\(path)': use .png, .ppm, .pfm or .npy.")
+          "Cannot tell the format of '\(Self.escaped(path))': use .png, .ppm, .pfm or .npy.")
       }
       files.append(file)
     }
     guard !files.isEmpty else {
       throw ValidationError("Nothing to render: give at least one of -o, --depth or --normals.")
     }
-    guard Set(files.map(\.path)).count == files.count else {
-      throw ValidationError("Two outputs name the same file.")
-    }
+    try Self.checkDistinct(files, scenePath: scenePath)
     try checkMemory(width: width, height: height, outputs: files.map(\.kind))
     if let threads, threads < 1 {
       throw ValidationError("--threads must be at least 1; got \(threads).")
@@ -208,6 +206,46 @@ struct Render: ParsableCommand {
     }
     settings.repeats = repeats
     return Plan(scenePath: scenePath, settings: settings, files: files, depthRange: range)
+  }
+
+  /// Two outputs naming one file, or an output naming the scene, are
+  /// usage errors: compared by identity (`FileIdentity`), not spelling.
+  private static func checkDistinct(
+    _ files: [OutputFile], scenePath: String
+  ) throws {
+    for (index, file) in files.enumerated() {
+      if FileIdentity.same(file.path, scenePath) {
+        throw ValidationError(
+          "\(name(of: file)) would overwrite the scene file '\(escaped(scenePath))'.")
+      }
+      for other in files[..<index] where FileIdentity.same(file.path, other.path) {
+        throw ValidationError(
+          "\(name(of: other)) and \(name(of: file)) name the same file.")
+      }
+    }
+  }
+
+  /// An output as the command line gave it, for messages.
+  private static func name(of file: OutputFile) -> String {
+    let option = file.kind == .depth ? "--depth" : file.kind == .normals ? "--normals" : "-o"
+    return "\(option) '\(escaped(file.path))'"
+  }
+
+  private static func escaped(_ path: String) -> String {
+    SceneParser.escaped(path)
+  }
+
+  /// An output naming a file the scene reads (a mesh or a texture) is a
+  /// usage error, found once the scene is read: nothing is rendered.
+  private func checkOutputs(_ files: [OutputFile], against scene: Scene) throws {
+    let inputs = scene.meshFiles + scene.materials.compactMap(\.texturePath)
+    for file in files {
+      for input in inputs where FileIdentity.same(file.path, input) {
+        printError(
+          "raytrace: error: \(Self.name(of: file)) would overwrite '\(Self.escaped(input))', which the scene reads.")
+        throw ExitCode.validationFailure
+      }
+    }
   }
 
   /// The largest image: 32768 on a side and 2²⁸ pixels (the buffers of a
@@ -244,6 +282,9 @@ struct Render: ParsableCommand {
   }
 
   func run() throws {
+    // Before anything is written or rendered: a terminating signal then
+    // removes the temporary outputs, whenever it comes.
+    AtomicFile.installInterruptCleanup()
     let plan = try plan()
     // Starts a dispatch worker thread while the scene is read, so that the
     // render's second thread is running when it is handed rows: created on
@@ -262,6 +303,7 @@ struct Render: ParsableCommand {
       throw ExitCode.failure
     }
     let parseSeconds = clock.lap()
+    try checkOutputs(plan.files, against: scene)
     do {
       for file in plan.files {
         try AtomicFile.checkWritable(file.path)

@@ -66,7 +66,8 @@ public struct RenderReport: Sendable {
 }
 
 /// A whole render: compile the scene for the chosen precision and method,
-/// render the requested outputs, and write each file whole or not at all.
+/// render the requested outputs, and write the files all or none
+/// (`OutputBatch`, whose temporary files exist from before the render).
 public enum RenderJob {
   /// Renders `scene` into `files`. Textures are read here, and only when a
   /// shaded image is among the files (a `SceneError` naming the texture
@@ -100,8 +101,13 @@ public enum RenderJob {
     _ files: [OutputFile], _ depthRange: ClosedRange<Double>?,
     _ png: PNGOptions, _ progress: (@Sendable (Int) -> Void)?
   ) throws -> RenderReport {
+    // The temporary files exist from here on, through the render: a
+    // target that cannot be written fails now, and an interrupted render
+    // leaves nothing behind.
+    let batch = try OutputBatch(paths: files.map(\.path))
     let output = Output(
-      settings: settings, files: files, depthRange: depthRange, png: png)
+      settings: settings, files: files, depthRange: depthRange, png: png,
+      batch: batch)
     if settings.engine == .course {
       return try runCourse(scene, textures, output, progress)
     }
@@ -123,6 +129,7 @@ public enum RenderJob {
     var files: [OutputFile]
     var depthRange: ClosedRange<Double>?
     var png: PNGOptions
+    var batch: OutputBatch
   }
 
   private static func run<Kernel: IntersectionKernel>(
@@ -244,10 +251,7 @@ public enum RenderJob {
       }
       encodedFiles.store(bytes, at: index)
     }
-    let encoded = files.indices.map {
-      (encodedFiles.bytes(at: $0), files[$0].path)
-    }
-    try AtomicFile.writeAll(encoded)
+    try output.batch.commit(files.indices.map { encodedFiles.bytes(at: $0) })
     var report = RenderReport(
       settings: settings, spheres: 0, planes: 0, sphereSearch: search,
       compileSeconds: compileSeconds, renderSeconds: seconds.median,

@@ -50,6 +50,9 @@ struct PlistSceneBuilder {
   let file: String
   let options: SceneOptions
   private var materials: [Material<Double>] = []
+  /// Every mesh file read, for `Scene.meshFiles` (a reference: the reader's
+  /// methods do not mutate it otherwise).
+  private let meshFiles = ReadFiles()
   /// Transforms open at the current object: only the outermost checks the
   /// geometry it moves, as in the text format.
   private var openTransforms = 0
@@ -90,9 +93,11 @@ struct PlistSceneBuilder {
       throw fail("", "the scene has no Group")
     }
     let root = try group(groupValue, "Group", depth: 1, material: nil)
-    return Scene(
+    var scene = Scene(
       camera: camera, lights: lights, background: background,
       ambient: ambient, materials: materials, root: root)
+    scene.meshFiles = meshFiles.paths
+    return scene
   }
 
   // MARK: - Blocks
@@ -382,6 +387,7 @@ struct PlistSceneBuilder {
       case .atReference(let message): throw fail("\(path).objFile", message)
       }
     }
+    meshFiles.paths.append(file)
     if textured && !loaded.hasTextureCoordinates {
       throw fail(
         "\(path).objFile",
@@ -631,4 +637,9 @@ struct PlistSceneBuilder {
       file: SceneParser.escaped(file), line: 0, column: 0,
       message: path.isEmpty ? message : "\(path): \(message)")
   }
+}
+
+/// The files a reader opened, collected as it goes.
+private final class ReadFiles {
+  var paths: [String] = []
 }

@@ -11,6 +11,9 @@ public struct Scene: Sendable {
   /// Never empty: a scene without materials gets one matte white material.
   public var materials: [Material<Double>]
   public var root: Group<Double>
+  /// The mesh files the scene read, as opened (its textures are named by
+  /// the materials).
+  public var meshFiles: [String] = []
 
   public init(
     camera: PerspectiveCamera<Double>, lights: [Light<Double>] = [],

@@ -20,9 +20,9 @@ public struct SceneError: Error, Equatable, CustomStringConvertible, Sendable {
   /// whole, or a property list's key path, `FILE: error: …`.
   public var description: String {
     if line > 0 && column > 0 {
-      return "\(file):\(line):\(column): error: \(message)"
+      return "\(SceneParser.escaped(file)):\(line):\(column): error: \(message)"
     }
-    if line > 0 { return "\(file):\(line): error: \(message)" }
-    return "\(file): error: \(message)"
+    if line > 0 { return "\(SceneParser.escaped(file)):\(line): error: \(message)" }
+    return "\(SceneParser.escaped(file)): error: \(message)"
   }
 }

@@ -47,6 +47,8 @@ public struct SceneParser {
   private var parsedMaterials: [Material<Double>]?
   /// Meshes without texture coordinates, checked against their material
   /// when the scene is read: a textured material needs them.
+  /// Every mesh file read, for `Scene.meshFiles`.
+  private var meshFiles: [String] = []
   private var meshesWithoutTextureCoordinates:
     [(material: Int, token: SceneToken, path: String)] = []
   private var pendingMaterialChecks: [(index: Int, token: SceneToken)] = []
@@ -164,10 +166,12 @@ public struct SceneParser {
               + "'\(Self.escaped(mesh.path))' has no texture coordinates "
               + "(no face gives vt)")
         }
-        return Scene(
+        var scene = Scene(
           camera: camera, lights: lights ?? [],
           background: background?.color ?? .zero,
           ambient: background?.ambient, materials: materialList, root: root)
+        scene.meshFiles = meshFiles
+        return scene
       case .open, .close:
         throw error(at: token, "expected a block name, found '\(text(token))'")
       case .word:
@@ -830,6 +834,7 @@ public struct SceneParser {
       let mesh = try MeshLoader.load(
         resolved, materialIndex: material, textured: textured ?? false,
         normals: options.meshNormals)
+      meshFiles.append(resolved)
       if !mesh.hasTextureCoordinates {
         meshesWithoutTextureCoordinates.append((material, token, resolved))
       }
@@ -1110,7 +1115,7 @@ public struct SceneParser {
   }
 
   /// `raw` with control characters and line separators escaped.
-  static func escaped(_ raw: String) -> String {
+  public static func escaped(_ raw: String) -> String {
     guard raw.unicodeScalars.contains(where: needsEscape) else { return raw }
     var escaped = String.UnicodeScalarView()
     for scalar in raw.unicodeScalars {

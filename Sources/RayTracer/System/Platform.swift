@@ -63,4 +63,14 @@ public enum Platform {
     guard pipe(&ends) == 0 else { return nil }
     return (ends[0], ends[1])
   }
+
+  /// `rename(2)`: 0, or −1 with `errno` set.
+  static func renameFile(_ from: String, _ to: String) -> Int32 {
+    rename(from, to)
+  }
+
+  /// `link(2)`: 0, or −1 with `errno` set.
+  static func linkFile(_ existing: String, _ new: String) -> Int32 {
+    link(existing, new)
+  }
 }

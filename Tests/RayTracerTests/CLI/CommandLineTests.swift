@@ -248,26 +248,6 @@ final class CommandLineTests: XCTestCase {
     XCTAssertEqual(files().filter { $0.hasSuffix(".png") }.count, 4)
   }
 
-  func testInterrupt_LeavesNoFileBehind() throws {
-    let target = folder + "/big.png"
-    try AtomicFile.write([1, 2, 3], to: folder + "/old.png")
-    let process = Process()
-    process.executableURL = URL(fileURLWithPath: Self.executable)
-    // Long enough (seconds, even in release) to be interrupted mid-render.
-    process.arguments = [
-      "scenes/spheres.txt", "--size", "8000", "8000", "--threads", "1", "-o", target,
-      "--normals", folder + "/old.png",
-    ]
-    process.currentDirectoryURL = URL(fileURLWithPath: Self.packageRoot)
-    try process.run()
-    usleep(300_000)
-    kill(process.processIdentifier, SIGINT)
-    process.waitUntilExit()
-    XCTAssertEqual(process.terminationReason, .uncaughtSignal)
-    XCTAssertEqual(files(), ["old.png"], "no new or temporary file may remain")
-    XCTAssertEqual(try read("old.png"), [1, 2, 3], "the old file must be untouched")
-  }
-
   func testReport_AntialiasingRows() throws {
     let outcome = try run([
       "report", "scenes/single-sphere.txt", "--size", "8", "8", "--runs", "1",

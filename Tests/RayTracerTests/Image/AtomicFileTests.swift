@@ -78,9 +78,77 @@ final class AtomicFileTests: XCTestCase {
     }
   }
 
-  func testTemporaryPath_StaysInTheTargetsFolder() {
-    let pid = getpid()
-    XCTAssertEqual(AtomicFile.temporaryPath(for: "a/b/c.png"), "a/b/.c.png.raytrace-\(pid).tmp")
-    XCTAssertEqual(AtomicFile.temporaryPath(for: "c.png"), ".c.png.raytrace-\(pid).tmp")
+  /// Short names in the target's folder, whatever the target's name, so
+  /// that a name the folder accepts always leaves room for them.
+  func testTemporaryPath_StaysInTheTargetsFolderAndIsShort() {
+    let prefix = ".rt-\(getpid())-"
+    let nested = OutputBatch.temporaryPath(for: "a/b/c.png")
+    XCTAssertTrue(nested.hasPrefix("a/b/" + prefix), nested)
+    XCTAssertTrue(nested.hasSuffix(".tmp"), nested)
+    let plain = OutputBatch.temporaryPath(for: "c.png")
+    XCTAssertTrue(plain.hasPrefix(prefix), plain)
+    XCTAssertNotEqual(plain, OutputBatch.temporaryPath(for: "c.png"))
+    XCTAssertLessThanOrEqual(
+      OutputBatch.temporaryPath(for: String(repeating: "n", count: 255)).utf8
+        .count, 40)
+  }
+
+  /// A 250-byte name (legal: NAME_MAX is 255) is written.
+  func testWrite_LongestNames() throws {
+    let name = String(repeating: "x", count: 246) + ".png"
+    try AtomicFile.write([5], to: folder + "/" + name)
+    XCTAssertEqual(contents(), [name])
+  }
+
+  /// The temporaries exist from the batch's creation (so through a render)
+  /// and are gone once it is committed or abandoned.
+  func testBatch_TemporariesLiveUntilCommitOrAbandon() throws {
+    let batch = try OutputBatch(paths: [folder + "/a.png", folder + "/b.png"])
+    XCTAssertEqual(contents().filter { $0.hasPrefix(".rt-") }.count, 2)
+    try batch.commit([[1], [2]])
+    XCTAssertEqual(contents(), ["a.png", "b.png"])
+    let abandoned = try OutputBatch(paths: [folder + "/c.png"])
+    XCTAssertEqual(contents().count, 3)
+    abandoned.abandon()
+    XCTAssertEqual(contents(), ["a.png", "b.png"])
+  }
+
+  /// A rename that fails part way puts back what the earlier ones
+  /// replaced: an old target its old bytes, a new target removed.
+  func testBatch_FailedRenameRestoresEveryTarget() throws {
+    try AtomicFile.write([1], to: folder + "/old.png")
+    let renames = AtomicCounter(0)
+    var operations = OutputBatch.FileOperations.system
+    operations.rename = { from, to in
+      // The third rename (b.png's) fails; renames back always work.
+      if !from.contains(".rt-") || renames.add(1).new != 3 {
+        return OutputBatch.FileOperations.system.rename(from, to)
+      }
+      errno = EPERM
+      return -1
+    }
+    let batch = try OutputBatch(
+      paths: [folder + "/old.png", folder + "/new.png", folder + "/b.png"],
+      operations: operations)
+    XCTAssertThrowsError(try batch.commit([[7], [8], [9]])) { error in
+      XCTAssertEqual((error as? OutputError)?.path, folder + "/b.png")
+    }
+    XCTAssertEqual(contents(), ["old.png"], "no new file and no temporary")
+    XCTAssertEqual(read(folder + "/old.png"), [1], "the old bytes are back")
+  }
+
+  /// Without hard links the batch still replaces the targets.
+  func testBatch_WithoutHardLinks() throws {
+    try AtomicFile.write([1], to: folder + "/a.png")
+    var operations = OutputBatch.FileOperations.system
+    operations.link = { _, _ in
+      errno = EPERM
+      return -1
+    }
+    let batch = try OutputBatch(
+      paths: [folder + "/a.png"], operations: operations)
+    try batch.commit([[2]])
+    XCTAssertEqual(read(folder + "/a.png"), [2])
+    XCTAssertEqual(contents(), ["a.png"])
   }
 }
