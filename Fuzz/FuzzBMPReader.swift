@@ -8,7 +8,8 @@
 
 @_cdecl("LLVMFuzzerTestOneInput")
 public func fuzzBMPReader(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt {
-  let bytes = data.map { Array(UnsafeBufferPointer(start: $0, count: size)) } ?? []
+  let bytes =
+    data.map { Array(UnsafeBufferPointer(start: $0, count: size)) } ?? []
   let image: Image8
   do throws(BMPReader.Failure) {
     image = try BMPReader.decode(bytes)

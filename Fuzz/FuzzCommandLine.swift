@@ -16,7 +16,8 @@ import ArgumentParser
 @testable import raytrace
 
 @_cdecl("LLVMFuzzerTestOneInput")
-public func fuzzCommandLine(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt {
+public func fuzzCommandLine(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt
+{
   let bytes = data.map { UnsafeBufferPointer(start: $0, count: size) }
   let arguments =
     bytes.map { bytes in

@@ -10,7 +10,8 @@
 
 @_cdecl("LLVMFuzzerTestOneInput")
 public func fuzzOBJReader(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt {
-  let bytes = data.map { Array(UnsafeBufferPointer(start: $0, count: size)) } ?? []
+  let bytes =
+    data.map { Array(UnsafeBufferPointer(start: $0, count: size)) } ?? []
   let mesh: OBJMesh
   do throws(SceneError) {
     mesh = try OBJReader.parse(bytes: bytes, file: "mesh.obj")
@@ -20,22 +21,34 @@ public func fuzzOBJReader(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt {
       description.utf8.starts(
         with: "mesh.obj:\(error.line):\(error.column): error: ".utf8),
       !description.utf8.contains(UInt8(ascii: "\n"))
-    else { fatalError("fuzz invariant: malformed error \(description.debugDescription)") }
-    let lines = bytes.split(separator: UInt8(ascii: "\n"), omittingEmptySubsequences: false)
+    else {
+      fatalError(
+        "fuzz invariant: malformed error \(description.debugDescription)")
+    }
+    let lines = bytes.split(
+      separator: UInt8(ascii: "\n"), omittingEmptySubsequences: false)
     guard (1...lines.count).contains(error.line),
       (1...(lines[error.line - 1].count + 1)).contains(error.column)
-    else { fatalError("fuzz invariant: position \(error.line):\(error.column) outside the input") }
+    else {
+      fatalError(
+        "fuzz invariant: position \(error.line):\(error.column) outside the input"
+      )
+    }
     return 0
   }
   for face in mesh.triangles {
-    for index in [face.vertexIndices.x, face.vertexIndices.y, face.vertexIndices.z]
+    for index in [
+      face.vertexIndices.x, face.vertexIndices.y, face.vertexIndices.z,
+    ]
     where !(0..<Int32(mesh.vertices.count)).contains(index) {
-      fatalError("fuzz invariant: vertex index \(index) of \(mesh.vertices.count)")
+      fatalError(
+        "fuzz invariant: vertex index \(index) of \(mesh.vertices.count)")
     }
     if let normals = face.normalIndices {
       for index in [normals.x, normals.y, normals.z]
       where !(0..<Int32(mesh.normals.count)).contains(index) {
-        fatalError("fuzz invariant: normal index \(index) of \(mesh.normals.count)")
+        fatalError(
+          "fuzz invariant: normal index \(index) of \(mesh.normals.count)")
       }
     }
   }

@@ -14,7 +14,8 @@
 
 @_cdecl("LLVMFuzzerTestOneInput")
 public func fuzzPlistScene(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt {
-  let bytes = data.map { Array(UnsafeBufferPointer(start: $0, count: size)) } ?? []
+  let bytes =
+    data.map { Array(UnsafeBufferPointer(start: $0, count: size)) } ?? []
   let scene: Scene
   do throws(SceneError) {
     scene = try SceneReader.parse(bytes: bytes, file: "fuzz.plist")
@@ -28,7 +29,8 @@ public func fuzzPlistScene(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt {
         $0.value < 0x20 || $0.value == 0x7F
       })
     else {
-      fatalError("fuzz invariant: malformed error \(description.debugDescription)")
+      fatalError(
+        "fuzz invariant: malformed error \(description.debugDescription)")
     }
     return 0
   }

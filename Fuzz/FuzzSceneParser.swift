@@ -26,11 +26,14 @@
 @testable import RayTracer
 
 /// Extra render checks, off by default: see the file header.
-let strictChecks = getenv("FUZZ_STRICT").map { $0.pointee == UInt8(ascii: "1") } ?? false
+let strictChecks =
+  getenv("FUZZ_STRICT").map { $0.pointee == UInt8(ascii: "1") } ?? false
 
 @_cdecl("LLVMFuzzerTestOneInput")
-public func fuzzSceneParser(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt {
-  let bytes = data.map { Array(UnsafeBufferPointer(start: $0, count: size)) } ?? []
+public func fuzzSceneParser(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt
+{
+  let bytes =
+    data.map { Array(UnsafeBufferPointer(start: $0, count: size)) } ?? []
   checkNumbers(bytes)
   // The bytes entry rather than `parse(_:file:)`: a String would have
   // replaced invalid UTF-8 before the tokenizer saw it, and a file read
@@ -69,13 +72,16 @@ func checkError(_ error: SceneError, _ bytes: [UInt8]) {
       || $0.value == 0x2029
   }
   guard controls.isEmpty else {
-    fail("the error holds control characters: \(error.description.debugDescription)")
+    fail(
+      "the error holds control characters: \(error.description.debugDescription)"
+    )
   }
   let prefix = Array("fuzz.txt:\(error.line):\(error.column): error: ".utf8)
   guard error.file == "fuzz.txt", description.starts(with: prefix),
     description.count > prefix.count
   else {
-    fail("the error is not FILE:LINE:COLUMN: error: MESSAGE: \(error.description)")
+    fail(
+      "the error is not FILE:LINE:COLUMN: error: MESSAGE: \(error.description)")
   }
   // Lines and their lengths, as the tokenizer counts them.
   var lineLengths = [0]
@@ -112,10 +118,13 @@ func checkNumbers(_ bytes: [UInt8]) {
     guard let reference = Double(text) else {
       fail("DecimalParser accepts '\(text)', the standard library does not")
     }
-    guard value.bitPattern == reference.bitPattern
-      || (value.isNaN && reference.isNaN)
+    guard
+      value.bitPattern == reference.bitPattern
+        || (value.isNaN && reference.isNaN)
     else {
-      fail("DecimalParser reads '\(text)' as \(value), the standard library as \(reference)")
+      fail(
+        "DecimalParser reads '\(text)' as \(value), the standard library as \(reference)"
+      )
     }
   }
 }
@@ -137,7 +146,8 @@ func checkScene(_ scene: Scene) {
     guard sphere.center.isFinite, sphere.radius.isFinite, sphere.radius > 0
     else { fail("a sphere that should not have parsed: \(sphere)") }
     guard scene.materials.indices.contains(sphere.materialIndex) else {
-      fail("sphere material \(sphere.materialIndex) of \(scene.materials.count)")
+      fail(
+        "sphere material \(sphere.materialIndex) of \(scene.materials.count)")
     }
   }
   for plane in primitives.planes {
@@ -149,18 +159,22 @@ func checkScene(_ scene: Scene) {
     }
   }
   for triangle in primitives.triangles {
-    guard triangle.v0.isFinite, triangle.v1.isFinite, triangle.v2.isFinite else {
+    guard triangle.v0.isFinite, triangle.v1.isFinite, triangle.v2.isFinite
+    else {
       fail("a triangle that should not have parsed: \(triangle)")
     }
     guard scene.materials.indices.contains(triangle.materialIndex) else {
-      fail("triangle material \(triangle.materialIndex) of \(scene.materials.count)")
+      fail(
+        "triangle material \(triangle.materialIndex) of \(scene.materials.count)"
+      )
     }
   }
   for ellipsoid in primitives.transformedSpheres {
     guard ellipsoid.matrix.rowMajorEntries.allSatisfy(\.isFinite),
       ellipsoid.inverse.rowMajorEntries.allSatisfy(\.isFinite)
     else { fail("an ellipsoid that should not have parsed: \(ellipsoid)") }
-    guard scene.materials.indices.contains(ellipsoid.sphere.materialIndex) else {
+    guard scene.materials.indices.contains(ellipsoid.sphere.materialIndex)
+    else {
       fail(
         "ellipsoid material \(ellipsoid.sphere.materialIndex) of "
           + "\(scene.materials.count)")
@@ -228,7 +242,9 @@ func render<Kernel: IntersectionKernel>(
   hierarchyThreshold: Int?, strict: Bool
 ) {
   let compiled =
-    hierarchyThreshold.map { CompiledScene<Kernel>(scene, hierarchyThreshold: $0) }
+    hierarchyThreshold.map {
+      CompiledScene<Kernel>(scene, hierarchyThreshold: $0)
+    }
     ?? CompiledScene<Kernel>(scene)
   let settings = RenderSettings(
     width: 4, height: 3, outputs: [.depth, .normals, .shaded], style: style,

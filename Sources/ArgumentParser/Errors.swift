@@ -1,9 +1,9 @@
 #if canImport(Glibc)
-import Glibc
+  import Glibc
 #elseif canImport(Musl)
-import Musl
+  import Musl
 #elseif canImport(Darwin)
-import Darwin
+  import Darwin
 #endif
 
 /// A problem with the parsed values as a whole. Thrown from `validate()` or
@@ -132,7 +132,8 @@ enum MessageInfo {
     var usage = HelpGenerator(commandStack: commandStack).usageMessage()
     if let helpName = commandStack.helpNames.preferredName {
       let names = commandStack.map { $0._commandName }.joined(separator: " ")
-      usage += "\n  See '\(names) \(helpName.synopsisString)' for more information."
+      usage +=
+        "\n  See '\(names) \(helpName.synopsisString)' for more information."
     }
     if case .noArguments(let inner) = parserError {
       parserError = inner
@@ -143,23 +144,29 @@ enum MessageInfo {
     case .helpRequested:
       self = .help(text: Self.helpText(commandStack, columns: columns))
     case .versionRequested:
-      let version = commandStack.map { $0.configuration.version }.last { !$0.isEmpty }
+      let version = commandStack.map { $0.configuration.version }.last {
+        !$0.isEmpty
+      }
       self = .help(text: version ?? "Unspecified version")
     case .invalidInput(let failure):
-      self = .validation(message: failure.message, usage: usage, help: failure.help)
+      self = .validation(
+        message: failure.message, usage: usage, help: failure.help)
     case .invalidState, .noArguments:
       self = .validation(
-        message: "Internal error. Invalid state while parsing command-line arguments.",
+        message:
+          "Internal error. Invalid state while parsing command-line arguments.",
         usage: usage, help: "")
     case .userValidationError(let error):
       self = Self.userError(
-        error, type: type, commandStack: commandStack, usage: usage, columns: columns)
+        error, type: type, commandStack: commandStack, usage: usage,
+        columns: columns)
     }
   }
 
   /// Errors thrown by the command's own code, from `validate()` or `run()`.
   private static func userError(
-    _ error: Error, type: ParsableCommand.Type, commandStack: [ParsableCommand.Type],
+    _ error: Error, type: ParsableCommand.Type,
+    commandStack: [ParsableCommand.Type],
     usage: String, columns: Int?
   ) -> MessageInfo {
     switch error {
@@ -182,7 +189,9 @@ enum MessageInfo {
     }
   }
 
-  private static func helpText(_ stack: [ParsableCommand.Type], columns: Int?) -> String {
+  private static func helpText(_ stack: [ParsableCommand.Type], columns: Int?)
+    -> String
+  {
     HelpGenerator(commandStack: stack).rendered(screenWidth: columns)
   }
 
@@ -243,10 +252,10 @@ func writeToStandardError(_ text: String) {
 /// that the `exit(withError:)` methods don't shadow.
 func terminateProcess(_ code: ExitCode) -> Never {
   #if canImport(Glibc)
-  Glibc.exit(code.rawValue)
+    Glibc.exit(code.rawValue)
   #elseif canImport(Musl)
-  Musl.exit(code.rawValue)
+    Musl.exit(code.rawValue)
   #elseif canImport(Darwin)
-  Darwin.exit(code.rawValue)
+    Darwin.exit(code.rawValue)
   #endif
 }

@@ -44,7 +44,8 @@ where Self: CaseIterable, Self: RawRepresentable, RawValue == String {
   }
 }
 
-extension ExpressibleByArgument where Self: RawRepresentable, RawValue: ExpressibleByArgument {
+extension ExpressibleByArgument
+where Self: RawRepresentable, RawValue: ExpressibleByArgument {
   /// An enumeration's default shows its raw value (`double`), not its case
   /// name as Swift spells it.
   public var defaultValueDescription: String {
@@ -52,7 +53,8 @@ extension ExpressibleByArgument where Self: RawRepresentable, RawValue: Expressi
   }
 }
 
-extension RawRepresentable where Self: ExpressibleByArgument, RawValue: ExpressibleByArgument {
+extension RawRepresentable
+where Self: ExpressibleByArgument, RawValue: ExpressibleByArgument {
   /// Lets `extension MyEnum: ExpressibleByArgument {}` be the whole conformance.
   public init?(argument: String) {
     guard let rawValue = RawValue(argument: argument) else { return nil }

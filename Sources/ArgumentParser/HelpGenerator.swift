@@ -14,21 +14,25 @@ struct HelpGenerator {
       var discussion = ""
 
       func rendered(screenWidth: Int) -> String {
-        let paddedLabel = String(repeating: " ", count: HelpGenerator.helpIndent) + label
+        let paddedLabel =
+          String(repeating: " ", count: HelpGenerator.helpIndent) + label
         let wrappedAbstract = abstract.wrapped(
           to: screenWidth, wrappingIndent: HelpGenerator.labelColumnWidth)
         let renderedAbstract: String
         if abstract.isEmpty {
           renderedAbstract = ""
         } else if paddedLabel.count < HelpGenerator.labelColumnWidth {
-          renderedAbstract = String(wrappedAbstract.dropFirst(paddedLabel.count))
+          renderedAbstract = String(
+            wrappedAbstract.dropFirst(paddedLabel.count))
         } else {
           renderedAbstract = "\n" + wrappedAbstract
         }
         let renderedDiscussion =
           discussion.isEmpty
           ? ""
-          : discussion.wrapped(to: screenWidth, wrappingIndent: HelpGenerator.helpIndent * 4) + "\n"
+          : discussion.wrapped(
+            to: screenWidth, wrappingIndent: HelpGenerator.helpIndent * 4)
+            + "\n"
         return paddedLabel + renderedAbstract + "\n" + renderedDiscussion
       }
     }
@@ -75,17 +79,23 @@ struct HelpGenerator {
     }
     self.abstract = abstract
     sections = Self.sections(
-      commandStack: commandStack, configuration: configuration, definitions: definitions)
+      commandStack: commandStack, configuration: configuration,
+      definitions: definitions)
   }
 
   /// `raytrace render [<options>] [<scene>]`: every argument while there are
   /// at most 12, else the required and positional ones after `[<options>]`.
-  static func synopsis(toolName: String, definitions: [ArgumentDefinition]) -> String {
+  static func synopsis(toolName: String, definitions: [ArgumentDefinition])
+    -> String
+  {
     var parts = definitions.flatMap(\.synopses)
     guard !parts.isEmpty else { return toolName }
     if parts.count > 12 {
-      parts = definitions.filter { $0.isPositional || !$0.isOptional }.flatMap(\.synopses)
-      guard !parts.isEmpty, parts.count <= 12 else { return "\(toolName) <options>" }
+      parts = definitions.filter { $0.isPositional || !$0.isOptional }.flatMap(
+        \.synopses)
+      guard !parts.isEmpty, parts.count <= 12 else {
+        return "\(toolName) <options>"
+      }
       return "\(toolName) [<options>] " + parts.joined(separator: " ")
     }
     return toolName + " " + parts.joined(separator: " ")
@@ -104,10 +114,13 @@ struct HelpGenerator {
         label: definition.helpLabel, abstract: definition.helpAbstract,
         discussion: definition.help.discussion)
       if !definition.groupTitle.isEmpty {
-        if let index = titled.firstIndex(where: { $0.title == definition.groupTitle }) {
+        if let index = titled.firstIndex(where: {
+          $0.title == definition.groupTitle
+        }) {
           titled[index].elements.append(element)
         } else {
-          titled.append(Section(title: definition.groupTitle, elements: [element]))
+          titled.append(
+            Section(title: definition.groupTitle, elements: [element]))
         }
       } else if definition.isPositional {
         positional.elements.append(element)
@@ -117,7 +130,8 @@ struct HelpGenerator {
     }
 
     if commandStack.contains(where: { !$0.configuration.version.isEmpty }) {
-      options.elements.append(Section.Element(label: "--version", abstract: "Show the version."))
+      options.elements.append(
+        Section.Element(label: "--version", abstract: "Show the version."))
     }
     let helpNames = commandStack.helpNames.partitioned
     if !helpNames.isEmpty {
@@ -140,7 +154,8 @@ struct HelpGenerator {
         {
           label += " (default)"
         }
-        return Section.Element(label: label, abstract: subcommand.configuration.abstract)
+        return Section.Element(
+          label: label, abstract: subcommand.configuration.abstract)
       })
 
     return [positional] + titled + [options, subcommands]
@@ -153,19 +168,25 @@ struct HelpGenerator {
 
   func rendered(screenWidth: Int? = nil) -> String {
     let screenWidth = screenWidth ?? Self.defaultScreenWidth
-    let renderedSections = sections
+    let renderedSections =
+      sections
       .map { $0.rendered(screenWidth: screenWidth) }
       .filter { !$0.isEmpty }
       .joined(separator: "\n")
     let renderedAbstract =
-      abstract.isEmpty ? "" : "OVERVIEW: \(abstract)".wrapped(to: screenWidth) + "\n\n"
+      abstract.isEmpty
+      ? "" : "OVERVIEW: \(abstract)".wrapped(to: screenWidth) + "\n\n"
     let renderedUsage =
-      usage.isEmpty ? "" : "USAGE: " + usage.hangingIndentingEachLine(by: 7) + "\n\n"
+      usage.isEmpty
+      ? "" : "USAGE: " + usage.hangingIndentingEachLine(by: 7) + "\n\n"
     var subcommandHint = ""
-    if sections.contains(where: { $0.title == "Subcommands" && !$0.elements.isEmpty }) {
+    if sections.contains(where: {
+      $0.title == "Subcommands" && !$0.elements.isEmpty
+    }) {
       var names = commandStack.map { $0._commandName }
       names.insert("help", at: min(1, names.count))
-      subcommandHint = "\n  See '\(names.joined(separator: " ")) <subcommand>' for detailed help."
+      subcommandHint =
+        "\n  See '\(names.joined(separator: " ")) <subcommand>' for detailed help."
     }
     return renderedAbstract + renderedUsage + renderedSections + subcommandHint
   }
@@ -184,7 +205,9 @@ extension ArgumentDefinition {
       guard let name = names.preferredName else { return [] }
       pieces = ["\(name.synopsisString) <\(valueName)>" + repeating]
     case .flag:
-      pieces = [names.preferredName, invertedNames.preferredName].compactMap { $0?.synopsisString }
+      pieces = [names.preferredName, invertedNames.preferredName].compactMap {
+        $0?.synopsisString
+      }
     }
     return isOptional ? pieces.map { "[\($0)]" } : pieces
   }
@@ -195,11 +218,14 @@ extension ArgumentDefinition {
     case .positional:
       return "<\(valueName)>"
     case .option:
-      return names.partitioned.map(\.synopsisString).joined(separator: ", ") + " <\(valueName)>"
+      return names.partitioned.map(\.synopsisString).joined(separator: ", ")
+        + " <\(valueName)>"
     case .flag:
       let on = names.partitioned.map(\.synopsisString).joined(separator: ", ")
       guard !invertedNames.isEmpty else { return on }
-      return on + "/" + invertedNames.partitioned.map(\.synopsisString).joined(separator: ", ")
+      return on + "/"
+        + invertedNames.partitioned.map(\.synopsisString).joined(
+          separator: ", ")
     }
   }
 
@@ -260,7 +286,8 @@ extension String {
     let lines = split(separator: "\n", omittingEmptySubsequences: false)
     guard let first = lines.first else { return self }
     let indent = String(repeating: " ", count: count)
-    return ([String(first)] + lines.dropFirst().map { $0.isEmpty ? "" : indent + $0 })
+    return
+      ([String(first)] + lines.dropFirst().map { $0.isEmpty ? "" : indent + $0 })
       .joined(separator: "\n")
   }
 
@@ -294,8 +321,10 @@ extension String {
     for i in 1...source.count {
       current[0] = i
       for j in 1...target.count {
-        let substitution = previous[j - 1] + (source[i - 1] == target[j - 1] ? 0 : 1)
-        current[j] = Swift.min(previous[j] + 1, current[j - 1] + 1, substitution)
+        let substitution =
+          previous[j - 1] + (source[i - 1] == target[j - 1] ? 0 : 1)
+        current[j] = Swift.min(
+          previous[j] + 1, current[j - 1] + 1, substitution)
       }
       swap(&previous, &current)
     }

@@ -18,7 +18,9 @@ public struct NameSpecification: ExpressibleByArrayLiteral, Sendable {
 
     /// `--name`, or `-name` with `withSingleDash`; a single-dash name is a
     /// whole token, never a bundle of short flags.
-    public static func customLong(_ name: String, withSingleDash: Bool = false) -> Element {
+    public static func customLong(_ name: String, withSingleDash: Bool = false)
+      -> Element
+    {
       Element(base: .customLong(name, withSingleDash: withSingleDash))
     }
 
@@ -28,7 +30,9 @@ public struct NameSpecification: ExpressibleByArrayLiteral, Sendable {
     }
 
     /// `-c`; with `allowingJoined`, `-cvalue` also gives the value.
-    public static func customShort(_ char: Character, allowingJoined: Bool = false) -> Element {
+    public static func customShort(
+      _ char: Character, allowingJoined: Bool = false
+    ) -> Element {
       Element(base: .customShort(char, allowingJoined: allowingJoined))
     }
   }
@@ -47,7 +51,9 @@ public struct NameSpecification: ExpressibleByArrayLiteral, Sendable {
     [.long]
   }
 
-  public static func customLong(_ name: String, withSingleDash: Bool = false) -> NameSpecification {
+  public static func customLong(_ name: String, withSingleDash: Bool = false)
+    -> NameSpecification
+  {
     [.customLong(name, withSingleDash: withSingleDash)]
   }
 
@@ -98,7 +104,8 @@ enum Name: Hashable {
 
   static func == (lhs: Name, rhs: Name) -> Bool {
     switch (lhs, rhs) {
-    case (.long(let a), .long(let b)), (.longWithSingleDash(let a), .longWithSingleDash(let b)):
+    case (.long(let a), .long(let b)),
+      (.longWithSingleDash(let a), .longWithSingleDash(let b)):
       return a == b
     case (.short(let a, _), .short(let b, _)):
       return a == b

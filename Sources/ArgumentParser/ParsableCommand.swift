@@ -10,11 +10,11 @@
 // `Mirror` and fills their boxes (see PropertyWrappers.swift).
 
 #if compiler(>=6.2)
-/// Lets metatypes of commands sit in `Sendable` values such as
-/// `CommandConfiguration.subcommands`, as in the real package.
-public typealias _SendableMetatype = SendableMetatype
+  /// Lets metatypes of commands sit in `Sendable` values such as
+  /// `CommandConfiguration.subcommands`, as in the real package.
+  public typealias _SendableMetatype = SendableMetatype
 #else
-public typealias _SendableMetatype = Any
+  public typealias _SendableMetatype = Any
 #endif
 
 /// A type whose properties are filled from command-line arguments.
@@ -145,12 +145,16 @@ extension ParsableArguments {
   }
 
   /// What `exit(withError:)` prints for `error`.
-  public static func fullMessage(for error: Error, columns: Int? = nil) -> String {
+  public static func fullMessage(for error: Error, columns: Int? = nil)
+    -> String
+  {
     MessageInfo(error: error, type: asCommand, columns: columns).fullText
   }
 
   /// The help screen, wrapped to `columns` (80 when nil).
-  public static func helpMessage(includeHidden: Bool = false, columns: Int? = nil) -> String {
+  public static func helpMessage(
+    includeHidden: Bool = false, columns: Int? = nil
+  ) -> String {
     HelpGenerator(commandStack: [asCommand], includeHidden: includeHidden)
       .rendered(screenWidth: columns)
   }
@@ -180,13 +184,17 @@ extension ParsableArguments {
 extension ParsableCommand {
   /// Parses `arguments` (the process's arguments when nil), descending into
   /// subcommands, and returns the validated command to run.
-  public static func parseAsRoot(_ arguments: [String]? = nil) throws -> ParsableCommand {
-    try CommandParser(root: self).parse(arguments ?? Array(CommandLine.arguments.dropFirst()))
+  public static func parseAsRoot(_ arguments: [String]? = nil) throws
+    -> ParsableCommand
+  {
+    try CommandParser(root: self).parse(
+      arguments ?? Array(CommandLine.arguments.dropFirst()))
   }
 
   /// The help screen of `subcommand`, as reached from this root command.
   public static func helpMessage(
-    for subcommand: ParsableCommand.Type, includeHidden: Bool = false, columns: Int? = nil
+    for subcommand: ParsableCommand.Type, includeHidden: Bool = false,
+    columns: Int? = nil
   ) -> String {
     HelpGenerator(
       commandStack: CommandParser(root: self).commandStack(for: subcommand),
@@ -214,7 +222,8 @@ extension ParsableCommand {
 struct ArgumentsCommand<Arguments: ParsableArguments>: ParsableCommand {
   static var configuration: CommandConfiguration {
     CommandConfiguration(
-      commandName: String(describing: Arguments.self).convertedToSnakeCase(separator: "-"))
+      commandName: String(describing: Arguments.self).convertedToSnakeCase(
+        separator: "-"))
   }
 
   @OptionGroup var arguments: Arguments

@@ -54,8 +54,11 @@ struct ArgumentDefinition {
   /// Every declared argument of `value`, in declaration order, option groups
   /// expanded in place.
   static func collect(from value: Any) -> [ArgumentDefinition] {
-    Mirror(reflecting: value).children.flatMap { child -> [ArgumentDefinition] in
-      guard let label = child.label, let declaring = child.value as? ArgumentDeclaring else {
+    Mirror(reflecting: value).children.flatMap {
+      child -> [ArgumentDefinition] in
+      guard let label = child.label,
+        let declaring = child.value as? ArgumentDeclaring
+      else {
         return []
       }
       let key = label.hasPrefix("_") ? String(label.dropFirst()) : label
@@ -150,24 +153,35 @@ struct ArgumentReader {
       let body = token.dropFirst(2)
       let name = body.prefix { $0 != "=" }
       let attached =
-        name.endIndex < body.endIndex ? String(body[body.index(after: name.endIndex)...]) : nil
-      if let match = longNames[String(name)] { return .option(match, attached: attached) }
+        name.endIndex < body.endIndex
+        ? String(body[body.index(after: name.endIndex)...]) : nil
+      if let match = longNames[String(name)] {
+        return .option(match, attached: attached)
+      }
       return .unknown(.long(String(name)))
     }
     guard token.hasPrefix("-"), token.count > 1 else { return .value }
     let body = token.dropFirst()
-    if let match = singleDashMatch(body) { return .option(match, attached: nil) }
-    if let equals = body.firstIndex(of: "="), let match = singleDashMatch(body[..<equals]) {
-      return .option(match, attached: String(body[body.index(after: equals)...]))
+    if let match = singleDashMatch(body) {
+      return .option(match, attached: nil)
+    }
+    if let equals = body.firstIndex(of: "="),
+      let match = singleDashMatch(body[..<equals])
+    {
+      return .option(
+        match, attached: String(body[body.index(after: equals)...]))
     }
     if token.isNegativeNumber { return .value }
-    if let first = body.first, let match = shortNames[first], case .short(_, true) = match.name,
+    if let first = body.first, let match = shortNames[first],
+      case .short(_, true) = match.name,
       takesValue(match)
     {
       return .option(match, attached: String(body.dropFirst()))
     }
     let group = body.compactMap { shortNames[$0] }
-    if group.count == body.count, group.dropLast().allSatisfy({ !takesValue($0) }) {
+    if group.count == body.count,
+      group.dropLast().allSatisfy({ !takesValue($0) })
+    {
       return .shortGroup(group)
     }
     if body.count == 1, let char = body.first {
@@ -198,7 +212,9 @@ struct ArgumentReader {
         return index
       }
       index += 1
-      guard case .option(let parsing) = definitions[last.index].kind else { continue }
+      guard case .option(let parsing) = definitions[last.index].kind else {
+        continue
+      }
       switch parsing {
       case .next, .unconditional, .scanningForValue:
         if attached == nil, index < tokens.count { index += 1 }
@@ -267,7 +283,9 @@ struct ArgumentReader {
 
     /// Records one use of a name at `index`, taking the values it needs and
     /// moving `index` to the last token taken.
-    private mutating func use(_ match: Match, attached: String?, at index: inout Int) throws {
+    private mutating func use(
+      _ match: Match, attached: String?, at index: inout Int
+    ) throws {
       let definition = definitions[match.index]
       guard case .option(let parsing) = definition.kind else {
         if let attached {
@@ -289,7 +307,8 @@ struct ArgumentReader {
       }
       switch parsing {
       case .next:
-        if attached == nil, index + 1 < tokens.count, !taken.contains(index + 1),
+        if attached == nil, index + 1 < tokens.count,
+          !taken.contains(index + 1),
           reader.isValue(tokens[index + 1])
         {
           index += 1
@@ -348,7 +367,9 @@ struct ArgumentReader {
       }
 
       for (index, uses) in flagUses.sorted(by: { $0.key < $1.key }) {
-        guard case .flag(let exclusivity) = definitions[index].kind else { continue }
+        guard case .flag(let exclusivity) = definitions[index].kind else {
+          continue
+        }
         switch exclusivity?.base {
         case .exclusive?:
           if uses.count > 1 {
@@ -392,13 +413,17 @@ struct ArgumentReader {
     /// Fills positional arguments in declaration order from the loose values,
     /// leaving in `loose` only what nothing took.
     private mutating func assignPositionals() {
-      let positionals = definitions.indices.compactMap { index -> (Int, PositionalParsing)? in
-        guard case .positional(let parsing) = definitions[index].kind else { return nil }
+      let positionals = definitions.indices.compactMap {
+        index -> (Int, PositionalParsing)? in
+        guard case .positional(let parsing) = definitions[index].kind else {
+          return nil
+        }
         return (index, parsing)
       }
       let hasPostTerminator = positionals.contains { $0.1 == .postTerminator }
       var queue = loose.filter { !(hasPostTerminator && $0.afterTerminator) }
-      var afterTerminator = hasPostTerminator ? loose.filter(\.afterTerminator) : []
+      var afterTerminator =
+        hasPostTerminator ? loose.filter(\.afterTerminator) : []
       for (index, parsing) in positionals {
         let taken: [(token: Int, text: String)]
         switch parsing {
@@ -413,7 +438,9 @@ struct ArgumentReader {
           taken = afterTerminator.map { ($0.token, $0.text) }
           afterTerminator = []
         case .allUnrecognized:
-          taken = (queue.map { ($0.token, $0.text) } + unknown.map { ($0.token, tokens[$0.token]) })
+          taken =
+            (queue.map { ($0.token, $0.text) }
+            + unknown.map { ($0.token, tokens[$0.token]) })
             .sorted { $0.token < $1.token }
           queue = []
           unknown = []
@@ -425,7 +452,9 @@ struct ArgumentReader {
       loose = (queue + afterTerminator).sorted { $0.token < $1.token }
     }
 
-    private func helpLine(_ definition: ArgumentDefinition, name: Name?) -> String {
+    private func helpLine(_ definition: ArgumentDefinition, name: Name?)
+      -> String
+    {
       guard !definition.help.abstract.isEmpty else { return "" }
       return "\(definition.label(for: name))  \(definition.help.abstract)"
     }
@@ -437,7 +466,8 @@ struct ArgumentReader {
         let list =
           quoted.count <= 2
           ? quoted.joined(separator: " and ")
-          : quoted.dropLast().joined(separator: ", ") + " or " + (quoted.last ?? "")
+          : quoted.dropLast().joined(separator: ", ") + " or "
+            + (quoted.last ?? "")
         return ". Please provide one of \(list)."
       }
       return ". Please provide one of the following:\n"
@@ -452,7 +482,8 @@ struct ArgumentReader {
       let typed = name.synopsisString
       var best: (distance: Int, text: String)?
       for definition in definitions {
-        for candidate in definition.names + definition.invertedNames where !candidate.isShort {
+        for candidate in definition.names + definition.invertedNames
+        where !candidate.isShort {
           let distance = candidate.synopsisString.editDistance(to: typed)
           if distance < 4, distance < (best?.distance ?? Int.max) {
             best = (distance, candidate.synopsisString)
@@ -463,15 +494,19 @@ struct ArgumentReader {
       return message + ". Did you mean '\(best.text)'?"
     }
 
-    private func missingArgument(_ definition: ArgumentDefinition) -> ParseFailure {
+    private func missingArgument(_ definition: ArgumentDefinition)
+      -> ParseFailure
+    {
       let repeating = definition.isRepeating ? " ..." : ""
       switch definition.kind {
       case .flag:
-        let names = (definition.names + definition.invertedNames).map(\.synopsisString)
+        let names = (definition.names + definition.invertedNames).map(
+          \.synopsisString)
         if names.count == 1 {
           return ParseFailure("Missing expected argument '\(names[0])'")
         }
-        return ParseFailure("Missing one of: '\(names.joined(separator: "', '"))'")
+        return ParseFailure(
+          "Missing one of: '\(names.joined(separator: "', '"))'")
       case .option:
         let label = definition.label(for: definition.names.preferredName)
         return ParseFailure(
@@ -489,7 +524,9 @@ struct ArgumentReader {
 extension String {
   /// `-1`, `-0.5`, `-.5`, `-2e3`: values, not options, unless declared as names.
   var isNegativeNumber: Bool {
-    guard hasPrefix("-"), let second = dropFirst().first, second.isNumber || second == "." else {
+    guard hasPrefix("-"), let second = dropFirst().first,
+      second.isNumber || second == "."
+    else {
       return false
     }
     return Double(self) != nil
@@ -531,25 +568,32 @@ struct CommandParser {
           if let subcommand = configuration.subcommands.first(where: {
             $0._commandName == next || $0.configuration.aliases.contains(next)
           }) {
-            try finish(&command, reader: reader, tokens: own, stack: stack, isEmpty: isEmpty)
+            try finish(
+              &command, reader: reader, tokens: own, stack: stack,
+              isEmpty: isEmpty)
             stack.append(subcommand)
             tokens = Array(rest.dropFirst())
             continue
           }
           if stack.count == 1, next == "help" {
-            return HelpCommand(commandStack: commandStack(forNames: Array(rest.dropFirst())))
+            return HelpCommand(
+              commandStack: commandStack(forNames: Array(rest.dropFirst())))
           }
         }
         try checkForBuiltInFlags(tokens, stack: stack)
         if let subcommand = configuration.defaultSubcommand {
-          try finish(&command, reader: reader, tokens: own, stack: stack, isEmpty: isEmpty)
+          try finish(
+            &command, reader: reader, tokens: own, stack: stack,
+            isEmpty: isEmpty)
           stack.append(subcommand)
           tokens = rest
           continue
         }
       }
       try checkForBuiltInFlags(tokens, stack: stack)
-      try finish(&command, reader: reader, tokens: tokens, stack: stack, isEmpty: isEmpty)
+      try finish(
+        &command, reader: reader, tokens: tokens, stack: stack, isEmpty: isEmpty
+      )
       return command
     }
     throw CommandError(commandStack: [root], parserError: .invalidState)
@@ -565,24 +609,30 @@ struct CommandParser {
       try reader.read(tokens)
     } catch let failure as ParseFailure {
       let error = ParserError.invalidInput(failure)
-      throw CommandError(commandStack: stack, parserError: isEmpty ? .noArguments(error) : error)
+      throw CommandError(
+        commandStack: stack, parserError: isEmpty ? .noArguments(error) : error)
     }
     do {
       try ArgumentDefinition.validateGroups(in: command)
       try command.validate()
     } catch {
-      throw CommandError(commandStack: stack, parserError: .userValidationError(error))
+      throw CommandError(
+        commandStack: stack, parserError: .userValidationError(error))
     }
   }
 
   /// Help and version flags win over everything else on the line.
-  private func checkForBuiltInFlags(_ tokens: [String], stack: [ParsableCommand.Type]) throws {
+  private func checkForBuiltInFlags(
+    _ tokens: [String], stack: [ParsableCommand.Type]
+  ) throws {
     let options = tokens.prefix { $0 != "--" }
     let helpNames = Set(stack.helpNames.map(\.synopsisString))
     if options.contains(where: helpNames.contains) {
       throw HelpRequested()
     }
-    if stack.contains(where: { !$0.configuration.version.isEmpty }), options.contains("--version") {
+    if stack.contains(where: { !$0.configuration.version.isEmpty }),
+      options.contains("--version")
+    {
       throw CommandError(commandStack: stack, parserError: .versionRequested)
     }
   }
@@ -604,12 +654,16 @@ struct CommandParser {
 
   /// The path from the root to `type`; just the root when `type` isn't below it.
   func commandStack(for type: ParsableCommand.Type) -> [ParsableCommand.Type] {
-    func path(from node: ParsableCommand.Type, depth: Int) -> [ParsableCommand.Type]? {
+    func path(from node: ParsableCommand.Type, depth: Int)
+      -> [ParsableCommand.Type]?
+    {
       if node == type { return [node] }
       // Guards against a command listing itself among its subcommands.
       guard depth < 32 else { return nil }
       for child in node.configuration.subcommands {
-        if let rest = path(from: child, depth: depth + 1) { return [node] + rest }
+        if let rest = path(from: child, depth: depth + 1) {
+          return [node] + rest
+        }
       }
       return nil
     }
@@ -622,7 +676,8 @@ extension Array where Element == ParsableCommand.Type {
   /// otherwise.
   var helpNames: [Name] {
     let specification =
-      last(where: { $0.configuration.helpNames != nil })?.configuration.helpNames
+      last(where: { $0.configuration.helpNames != nil })?.configuration
+      .helpNames
       ?? [.short, .long]
     return specification.makeNames(key: "help")
   }
@@ -632,7 +687,8 @@ extension Array where Element == ParsableCommand.Type {
 /// prints the help of the commands in `commandStack`.
 struct HelpCommand: ParsableCommand {
   static var configuration: CommandConfiguration {
-    CommandConfiguration(commandName: "help", abstract: "Show subcommand help information.")
+    CommandConfiguration(
+      commandName: "help", abstract: "Show subcommand help information.")
   }
 
   var commandStack: [ParsableCommand.Type] = []

@@ -137,7 +137,9 @@ struct ValueDeclaration<Value>: Sendable {
 }
 
 extension ValueDeclaration where Value: ExpressibleByArgument {
-  static func single(initial: Value?, help: ArgumentHelp?, completion: CompletionKind?) -> Self {
+  static func single(
+    initial: Value?, help: ArgumentHelp?, completion: CompletionKind?
+  ) -> Self {
     ValueDeclaration(
       help: help, isRepeating: false, isOptional: initial != nil,
       defaultValueDescription: initial?.defaultValueDescription,
@@ -151,7 +153,8 @@ extension ValueDeclaration {
     help: ArgumentHelp?, completion: CompletionKind?
   ) -> Self where Value == T? {
     ValueDeclaration(
-      help: help, isRepeating: false, isOptional: true, defaultValueDescription: nil,
+      help: help, isRepeating: false, isOptional: true,
+      defaultValueDescription: nil,
       allValues: T.allValueStrings, completion: completion,
       accumulate: { _, token in T(argument: token).map { .some($0) } })
   }
@@ -161,13 +164,17 @@ extension ValueDeclaration {
   ) -> Self where Value == [T] {
     ValueDeclaration(
       help: help, isRepeating: true, isOptional: initial != nil,
-      defaultValueDescription: initial?.map(\.defaultValueDescription).joined(separator: ", "),
+      defaultValueDescription: initial?.map(\.defaultValueDescription).joined(
+        separator: ", "),
       allValues: T.allValueStrings, completion: completion,
-      accumulate: { values, token in T(argument: token).map { (values ?? []) + [$0] } })
+      accumulate: { values, token in
+        T(argument: token).map { (values ?? []) + [$0] }
+      })
   }
 
   func definition(
-    kind: ArgumentDefinition.Kind, names: [Name], key: String, storage: ArgumentStorage<Value>
+    kind: ArgumentDefinition.Kind, names: [Name], key: String,
+    storage: ArgumentStorage<Value>
   ) -> ArgumentDefinition {
     let accumulate = self.accumulate
     return ArgumentDefinition(
@@ -176,7 +183,9 @@ extension ValueDeclaration {
       defaultValueDescription: defaultValueDescription, allValues: allValues,
       sink: ArgumentSink(
         take: { token in
-          guard let value = accumulate(storage.pending, token) else { return false }
+          guard let value = accumulate(storage.pending, token) else {
+            return false
+          }
           storage.pending = value
           return true
         },
@@ -215,7 +224,8 @@ public struct Option<Value>: CustomStringConvertible {
   /// extensions, as in the real package.
   @available(
     *, unavailable,
-    message: "A default value must be provided unless the value type conforms to ExpressibleByArgument."
+    message:
+      "A default value must be provided unless the value type conforms to ExpressibleByArgument."
   )
   public init() {
     fatalError("unavailable")
@@ -237,7 +247,8 @@ extension Option: ArgumentDeclaring {
   func definitions(key: String) -> [ArgumentDefinition] {
     [
       declaration.definition(
-        kind: .option(parsing), names: names.makeNames(key: key), key: key, storage: storage)
+        kind: .option(parsing), names: names.makeNames(key: key), key: key,
+        storage: storage)
     ]
   }
 }
@@ -253,7 +264,8 @@ extension Option where Value: ExpressibleByArgument {
   ) {
     self.init(
       initial: wrappedValue, names: name, parsing: parsing.base,
-      declaration: .single(initial: wrappedValue, help: help, completion: completion))
+      declaration: .single(
+        initial: wrappedValue, help: help, completion: completion))
   }
 
   /// A required option.
@@ -303,7 +315,8 @@ extension Option {
   ) where Value == [T] {
     self.init(
       initial: wrappedValue, names: name, parsing: parsing.base,
-      declaration: .array(initial: wrappedValue, help: help, completion: completion))
+      declaration: .array(
+        initial: wrappedValue, help: help, completion: completion))
   }
 
   /// An array option that must be given at least once.
@@ -329,7 +342,10 @@ public struct Argument<Value>: CustomStringConvertible {
   let parsing: PositionalParsing
   let declaration: ValueDeclaration<Value>
 
-  init(initial: Value?, parsing: PositionalParsing, declaration: ValueDeclaration<Value>) {
+  init(
+    initial: Value?, parsing: PositionalParsing,
+    declaration: ValueDeclaration<Value>
+  ) {
     storage = ArgumentStorage(initial)
     self.parsing = parsing
     self.declaration = declaration
@@ -340,7 +356,8 @@ public struct Argument<Value>: CustomStringConvertible {
   /// extensions, as in the real package.
   @available(
     *, unavailable,
-    message: "A default value must be provided unless the value type conforms to ExpressibleByArgument."
+    message:
+      "A default value must be provided unless the value type conforms to ExpressibleByArgument."
   )
   public init() {
     fatalError("unavailable")
@@ -360,16 +377,23 @@ extension Argument: Sendable where Value: Sendable {}
 
 extension Argument: ArgumentDeclaring {
   func definitions(key: String) -> [ArgumentDefinition] {
-    [declaration.definition(kind: .positional(parsing), names: [], key: key, storage: storage)]
+    [
+      declaration.definition(
+        kind: .positional(parsing), names: [], key: key, storage: storage)
+    ]
   }
 }
 
 extension Argument where Value: ExpressibleByArgument {
   /// An argument with a default, from the property's initialiser.
-  public init(wrappedValue: Value, help: ArgumentHelp? = nil, completion: CompletionKind? = nil) {
+  public init(
+    wrappedValue: Value, help: ArgumentHelp? = nil,
+    completion: CompletionKind? = nil
+  ) {
     self.init(
       initial: wrappedValue, parsing: .single,
-      declaration: .single(initial: wrappedValue, help: help, completion: completion))
+      declaration: .single(
+        initial: wrappedValue, help: help, completion: completion))
   }
 
   /// A required argument.
@@ -409,7 +433,8 @@ extension Argument {
   ) where Value == [T] {
     self.init(
       initial: wrappedValue, parsing: parsing.base,
-      declaration: .array(initial: wrappedValue, help: help, completion: completion))
+      declaration: .array(
+        initial: wrappedValue, help: help, completion: completion))
   }
 
   /// An array argument that needs at least one value.
@@ -519,14 +544,17 @@ extension Flag: ArgumentDeclaring {
     }
     var defaultDescription: String?
     if inversion != nil, let initialIsOn {
-      defaultDescription = (initialIsOn ? positive : negative).preferredName?.synopsisString
+      defaultDescription =
+        (initialIsOn ? positive : negative).preferredName?.synopsisString
     }
     let storage = self.storage
     let resolve = self.resolve
     return [
       ArgumentDefinition(
-        kind: .flag(exclusivity), names: positive, invertedNames: negative, key: key,
-        help: help ?? ArgumentHelp(), isRepeating: false, isOptional: storage.value != nil,
+        kind: .flag(exclusivity), names: positive, invertedNames: negative,
+        key: key,
+        help: help ?? ArgumentHelp(), isRepeating: false,
+        isOptional: storage.value != nil,
         defaultValueDescription: defaultDescription, allValues: [],
         sink: ArgumentSink(
           flag: { uses in storage.value = resolve(uses) },
@@ -538,7 +566,10 @@ extension Flag: ArgumentDeclaring {
 
 extension Flag where Value == Bool {
   /// A flag that is off unless given; help shows no default for it.
-  public init(wrappedValue: Bool, name: NameSpecification = .long, help: ArgumentHelp? = nil) {
+  public init(
+    wrappedValue: Bool, name: NameSpecification = .long,
+    help: ArgumentHelp? = nil
+  ) {
     storage = ArgumentStorage(wrappedValue)
     names = name
     self.help = help
@@ -562,7 +593,8 @@ extension Flag where Value == Bool {
     help: ArgumentHelp? = nil
   ) {
     self.init(
-      initial: wrappedValue, name: name, inversion: inversion, exclusivity: exclusivity, help: help)
+      initial: wrappedValue, name: name, inversion: inversion,
+      exclusivity: exclusivity, help: help)
   }
 
   /// A flag whose name or inversion must be given.
@@ -572,7 +604,9 @@ extension Flag where Value == Bool {
     exclusivity: FlagExclusivity = .chooseLast,
     help: ArgumentHelp? = nil
   ) {
-    self.init(initial: nil, name: name, inversion: inversion, exclusivity: exclusivity, help: help)
+    self.init(
+      initial: nil, name: name, inversion: inversion, exclusivity: exclusivity,
+      help: help)
   }
 
   private init(
@@ -606,7 +640,8 @@ extension Name {
   fileprivate func prefixed(_ prefix: String) -> Name {
     switch self {
     case .long(let name): return .long(prefix + name)
-    case .longWithSingleDash(let name): return .longWithSingleDash(prefix + name)
+    case .longWithSingleDash(let name):
+      return .longWithSingleDash(prefix + name)
     case .short: return self
     }
   }

@@ -1,9 +1,9 @@
 #if canImport(Glibc)
-import Glibc
+  import Glibc
 #elseif canImport(Darwin)
-import Darwin
+  import Darwin
 #elseif canImport(Musl)
-import Musl
+  import Musl
 #endif
 
 // Free functions at file scope, where the names mean the C library's and not
@@ -15,9 +15,15 @@ import Musl
 @usableFromInline func libm_tan(_ x: Double) -> Double { tan(x) }
 @usableFromInline func libm_acos(_ x: Double) -> Double { acos(x) }
 @usableFromInline func libm_atan(_ x: Double) -> Double { atan(x) }
-@usableFromInline func libm_pow(_ x: Double, _ y: Double) -> Double { pow(x, y) }
-@usableFromInline func libm_atan2(_ y: Double, _ x: Double) -> Double { atan2(y, x) }
-@usableFromInline func libm_hypot(_ x: Double, _ y: Double) -> Double { hypot(x, y) }
+@usableFromInline func libm_pow(_ x: Double, _ y: Double) -> Double {
+  pow(x, y)
+}
+@usableFromInline func libm_atan2(_ y: Double, _ x: Double) -> Double {
+  atan2(y, x)
+}
+@usableFromInline func libm_hypot(_ x: Double, _ y: Double) -> Double {
+  hypot(x, y)
+}
 
 extension Double: Real {
   @inlinable public static func exp(_ x: Double) -> Double { libm_exp(x) }

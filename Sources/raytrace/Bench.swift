@@ -22,7 +22,9 @@ struct Bench: ParsableCommand {
   @Option(help: "Timed runs per workload, after one warm-up.")
   var runs: Int = 5
 
-  @Option(help: ArgumentHelp("Folder for generated scenes and images.", valueName: "dir"))
+  @Option(
+    help: ArgumentHelp(
+      "Folder for generated scenes and images.", valueName: "dir"))
   var data: String = ".build/bench"
 
   @Flag(help: "Skip the 1,000,000-sphere and 3840x2160 workloads.")
@@ -35,11 +37,16 @@ struct Bench: ParsableCommand {
   func run() throws {
     let benchmark = Benchmark(
       executable: currentExecutable(), dataFolder: data, runs: runs)
-    print("| workload | size | objects | threads | outputs | render, warm (ms) | Mrays/s | render, first (ms) | end to end (s) | peak memory (MiB) |")
+    print(
+      "| workload | size | objects | threads | outputs | render, warm (ms) | Mrays/s | render, first (ms) | end to end (s) | peak memory (MiB) |"
+    )
     print("|---|---|---:|---:|---|---:|---:|---:|---:|---:|")
     var endToEnd: [Int: Double] = [:]
     for workload in Workload.standard {
-      if quick && (workload.width * workload.height > 1920 * 1080 || workload.objectsDescription == "1000000") {
+      if quick
+        && (workload.width * workload.height > 1920 * 1080
+          || workload.objectsDescription == "1000000")
+      {
         continue
       }
       do {
@@ -52,7 +59,8 @@ struct Bench: ParsableCommand {
             + "\(formatted(result.renderSeconds * 1000, digits: 3)) | "
             + "\(formatted(result.endToEndSeconds, digits: 3)) | "
             + "\(formatted(Double(result.peakBytes) / 1_048_576, digits: 3)) |")
-        if case .randomSpheres(let count) = workload.source, workload.threads == nil,
+        if case .randomSpheres(let count) = workload.source,
+          workload.threads == nil,
           workload.outputs == [.depth, .normals]
         {
           endToEnd[count] = result.endToEndSeconds

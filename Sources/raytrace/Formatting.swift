@@ -7,7 +7,9 @@ func printError(_ line: String) {
   let bytes = Array((line + "\n").utf8)
   var written = 0
   while written < bytes.count {
-    let result = bytes[written...].withUnsafeBytes { write(2, $0.baseAddress, $0.count) }
+    let result = bytes[written...].withUnsafeBytes {
+      write(2, $0.baseAddress, $0.count)
+    }
     if result <= 0 { return }
     written += result
   }
@@ -37,7 +39,9 @@ private func withFormat(_ format: String, _ value: Double) -> String {
   _ = withVaList([value]) { arguments in
     vsnprintf(&buffer, buffer.count, format, arguments)
   }
-  return String(decoding: buffer.prefix { $0 != 0 }.map { UInt8(bitPattern: $0) }, as: UTF8.self)
+  return String(
+    decoding: buffer.prefix { $0 != 0 }.map { UInt8(bitPattern: $0) },
+    as: UTF8.self)
 }
 
 /// The `.txt` files directly in `folder`, sorted by name; empty when the

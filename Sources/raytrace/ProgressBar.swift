@@ -22,16 +22,21 @@ final class ProgressBar: Sendable {
     let elapsed = Stopwatch.now() - start
     // Estimate the whole render from its progress; stay silent when it
     // will be done within a second.
-    guard elapsed > 0.25, elapsed * Double(total) / Double(max(finished, 1)) > 1 else { return }
+    guard elapsed > 0.25, elapsed * Double(total) / Double(max(finished, 1)) > 1
+    else { return }
     let permille = finished * 1000 / total
     let previous = drawn.load()
-    guard permille / 10 > previous / 10 || (permille == 1000 && previous != 1000) else { return }
+    guard
+      permille / 10 > previous / 10 || (permille == 1000 && previous != 1000)
+    else { return }
     guard drawn.exchange(expected: previous, desired: permille)
     else { return }
     visible.store(1)
     let width = 40
     let filled = permille * width / 1000
-    let bar = String(repeating: "#", count: filled) + String(repeating: ".", count: width - filled)
+    let bar =
+      String(repeating: "#", count: filled)
+      + String(repeating: ".", count: width - filled)
     printRaw("\rrendering [\(bar)] \(permille / 10)%")
   }
 

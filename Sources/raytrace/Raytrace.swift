@@ -5,7 +5,8 @@ import RayTracer
 struct Raytrace: ParsableCommand {
   static let configuration = CommandConfiguration(
     commandName: "raytrace",
-    abstract: "Ray-cast a scene of spheres and planes into shaded, depth and normal images.",
+    abstract:
+      "Ray-cast a scene of spheres and planes into shaded, depth and normal images.",
     subcommands: [Render.self, Report.self, Bench.self],
     defaultSubcommand: Render.self)
 }

@@ -23,22 +23,29 @@ struct Render: ParsableCommand {
 
   @Option(
     name: .customLong("input", withSingleDash: true),
-    help: ArgumentHelp("The scene file (the assignment's spelling).", valueName: "scene"))
+    help: ArgumentHelp(
+      "The scene file (the assignment's spelling).", valueName: "scene"))
   var input: String?
 
   @Option(
-    name: [.customShort("o"), .long, .customLong("output", withSingleDash: true)],
-    help: ArgumentHelp("Write the shaded image to this file.", valueName: "file"))
+    name: [
+      .customShort("o"), .long, .customLong("output", withSingleDash: true),
+    ],
+    help: ArgumentHelp(
+      "Write the shaded image to this file.", valueName: "file"))
   var output: String?
 
   @Option(
-    name: [.long, .customLong("size", withSingleDash: true)], parsing: .upToNextOption,
-    help: ArgumentHelp("Image width and height in pixels (default: 800 800).", valueName: "w h"))
+    name: [.long, .customLong("size", withSingleDash: true)],
+    parsing: .upToNextOption,
+    help: ArgumentHelp(
+      "Image width and height in pixels (default: 800 800).", valueName: "w h"))
   var size: [Int] = []
 
   @Option(
     name: .long,
-    help: ArgumentHelp("Write the depth image to this file.", valueName: "file"))
+    help: ArgumentHelp("Write the depth image to this file.", valueName: "file")
+  )
   var depth: String?
 
   @Option(
@@ -57,7 +64,8 @@ struct Render: ParsableCommand {
 
   @Option(
     name: [.long, .customLong("normals", withSingleDash: true)],
-    help: ArgumentHelp("Write the normals image to this file.", valueName: "file"))
+    help: ArgumentHelp(
+      "Write the normals image to this file.", valueName: "file"))
   var normals: String?
 
   @Option(
@@ -66,10 +74,16 @@ struct Render: ParsableCommand {
       valueName: "style"))
   var style: ImageStyle?
 
-  @Option(help: "Precision of the geometry and shading: double is exact to a few ulps on every scene of the stiff suite; float is faster but loses planets and far-from-origin scenes.")
+  @Option(
+    help:
+      "Precision of the geometry and shading: double is exact to a few ulps on every scene of the stiff suite; float is faster but loses planets and far-from-origin scenes."
+  )
   var precision: Precision = .double
 
-  @Option(help: "Sphere intersection: stable (cancellation-free) or naive (the course's textbook formula, for comparison).")
+  @Option(
+    help:
+      "Sphere intersection: stable (cancellation-free) or naive (the course's textbook formula, for comparison)."
+  )
   var intersection: IntersectionMethod = .stable
 
   @Option(
@@ -78,12 +92,17 @@ struct Render: ParsableCommand {
       valueName: "engine"))
   var engine: Engine = .fast
 
-  @Option(help: "Worker threads (default: all cores). The image is identical for any count.")
+  @Option(
+    help:
+      "Worker threads (default: all cores). The image is identical for any count."
+  )
   var threads: Int?
 
   @Option(
     name: .customLong("png-level"),
-    help: "zlib level for PNG files, 0 to 9: lower is faster and larger, higher smaller and slower.")
+    help:
+      "zlib level for PNG files, 0 to 9: lower is faster and larger, higher smaller and slower."
+  )
   var pngLevel: Int = Int(PNGOptions.default.compressionLevel)
 
   @Option(
@@ -94,15 +113,22 @@ struct Render: ParsableCommand {
 
   @Option(
     name: [.long, .customLong("filter", withSingleDash: true)],
-    help: "The pixel filter of supersampled shading: box (the pixel's square) or tent (a 2x2-pixel tent).")
+    help:
+      "The pixel filter of supersampled shading: box (the pixel's square) or tent (a 2x2-pixel tent)."
+  )
   var filter: PixelFilter = .box
 
   @Flag(
     name: .customLong("jitter", withSingleDash: true),
-    help: "The assignment's spelling: samples are always jittered, so this changes nothing.")
+    help:
+      "The assignment's spelling: samples are always jittered, so this changes nothing."
+  )
   var jitter = false
 
-  @Flag(help: "Print what was rendered to standard error: size, rays, time, throughput, and which outputs were computed or left out.")
+  @Flag(
+    help:
+      "Print what was rendered to standard error: size, rays, time, throughput, and which outputs were computed or left out."
+  )
   var stats = false
 
   @Option(
@@ -129,24 +155,29 @@ struct Render: ParsableCommand {
     switch (scene, input) {
     case (let path?, nil), (nil, let path?): scenePath = path
     case (nil, nil): throw ValidationError("Missing the scene file.")
-    case (_?, _?): throw ValidationError("Give the scene either as an argument or with -input, not both.")
+    case (_?, _?):
+      throw ValidationError(
+        "Give the scene either as an argument or with -input, not both.")
     }
     var width = 800
     var height = 800
     if !size.isEmpty {
       guard size.count == 2 else {
-        throw ValidationError("--size takes two values, W and H; got \(size.count).")
+        throw ValidationError(
+          "--size takes two values, W and H; got \(size.count).")
       }
       (width, height) = (size[0], size[1])
       guard width >= 1, height >= 1 else {
-        throw ValidationError("--size needs W and H of at least 1; got \(width) \(height).")
+        throw ValidationError(
+          "--size needs W and H of at least 1; got \(width) \(height).")
       }
     }
     var range: ClosedRange<Double>?
     var depthPath = depth
     if !assignmentDepth.isEmpty {
       guard depth == nil else {
-        throw ValidationError("Give the depth image either with --depth or with -depth, not both.")
+        throw ValidationError(
+          "Give the depth image either with --depth or with -depth, not both.")
       }
       guard assignmentDepth.count == 3, let low = Double(assignmentDepth[0]),
         let high = Double(assignmentDepth[1])
@@ -158,24 +189,30 @@ struct Render: ParsableCommand {
     }
     if !depthRange.isEmpty {
       guard range == nil else {
-        throw ValidationError("-depth already gives a range; drop --depth-range.")
+        throw ValidationError(
+          "-depth already gives a range; drop --depth-range.")
       }
       guard depthRange.count == 2 else {
         throw ValidationError("--depth-range takes two values, MIN and MAX.")
       }
-      range = try checkedRange(depthRange[0], depthRange[1], option: "--depth-range")
+      range = try checkedRange(
+        depthRange[0], depthRange[1], option: "--depth-range")
     }
     var files: [OutputFile] = []
-    for (kind, path) in [(RenderOutputs.shaded, output), (.depth, depthPath), (.normals, normals)] {
+    for (kind, path) in [
+      (RenderOutputs.shaded, output), (.depth, depthPath), (.normals, normals),
+    ] {
       guard let path else { continue }
       guard let file = OutputFile(kind: kind, path: path) else {
         throw ValidationError(
-          "Cannot tell the format of '\(Self.escaped(path))': use .png, .ppm, .pfm or .npy.")
+          "Cannot tell the format of '\(Self.escaped(path))': use .png, .ppm, .pfm or .npy."
+        )
       }
       files.append(file)
     }
     guard !files.isEmpty else {
-      throw ValidationError("Nothing to render: give at least one of -o, --depth or --normals.")
+      throw ValidationError(
+        "Nothing to render: give at least one of -o, --depth or --normals.")
     }
     try Self.checkDistinct(files, scenePath: scenePath)
     try checkMemory(width: width, height: height, outputs: files.map(\.kind))
@@ -183,12 +220,14 @@ struct Render: ParsableCommand {
       throw ValidationError("--threads must be at least 1; got \(threads).")
     }
     guard (0...9).contains(pngLevel) else {
-      throw ValidationError("--png-level must be between 0 and 9; got \(pngLevel).")
+      throw ValidationError(
+        "--png-level must be between 0 and 9; got \(pngLevel).")
     }
     let strata = Int(Double(max(samples, 0)).squareRoot())
     guard samples >= 1, samples <= 4096, strata * strata == samples else {
       throw ValidationError(
-        "--samples must be a square between 1 and 4096 (1, 4, 9, 16, ...); got \(samples).")
+        "--samples must be a square between 1 and 4096 (1, 4, 9, 16, ...); got \(samples)."
+      )
     }
     var settings = RenderSettings(
       width: width, height: height, outputs: [],
@@ -198,14 +237,17 @@ struct Render: ParsableCommand {
     settings.filter = filter
     guard engine == .fast || precision == .double else {
       throw ValidationError(
-        "--engine course computes in double, the scene's precision; drop --precision float or use --engine fast.")
+        "--engine course computes in double, the scene's precision; drop --precision float or use --engine fast."
+      )
     }
     settings.engine = engine
     guard (0...1000).contains(repeats) else {
-      throw ValidationError("--repeat must be between 0 and 1000; got \(repeats).")
+      throw ValidationError(
+        "--repeat must be between 0 and 1000; got \(repeats).")
     }
     settings.repeats = repeats
-    return Plan(scenePath: scenePath, settings: settings, files: files, depthRange: range)
+    return Plan(
+      scenePath: scenePath, settings: settings, files: files, depthRange: range)
   }
 
   /// Two outputs naming one file, or an output naming the scene, are
@@ -216,9 +258,11 @@ struct Render: ParsableCommand {
     for (index, file) in files.enumerated() {
       if FileIdentity.same(file.path, scenePath) {
         throw ValidationError(
-          "\(name(of: file)) would overwrite the scene file '\(escaped(scenePath))'.")
+          "\(name(of: file)) would overwrite the scene file '\(escaped(scenePath))'."
+        )
       }
-      for other in files[..<index] where FileIdentity.same(file.path, other.path) {
+      for other in files[..<index]
+      where FileIdentity.same(file.path, other.path) {
         throw ValidationError(
           "\(name(of: other)) and \(name(of: file)) name the same file.")
       }
@@ -227,7 +271,9 @@ struct Render: ParsableCommand {
 
   /// An output as the command line gave it, for messages.
   private static func name(of file: OutputFile) -> String {
-    let option = file.kind == .depth ? "--depth" : file.kind == .normals ? "--normals" : "-o"
+    let option =
+      file.kind == .depth
+      ? "--depth" : file.kind == .normals ? "--normals" : "-o"
     return "\(option) '\(escaped(file.path))'"
   }
 
@@ -237,12 +283,14 @@ struct Render: ParsableCommand {
 
   /// An output naming a file the scene reads (a mesh or a texture) is a
   /// usage error, found once the scene is read: nothing is rendered.
-  private func checkOutputs(_ files: [OutputFile], against scene: Scene) throws {
+  private func checkOutputs(_ files: [OutputFile], against scene: Scene) throws
+  {
     let inputs = scene.meshFiles + scene.materials.compactMap(\.texturePath)
     for file in files {
       for input in inputs where FileIdentity.same(file.path, input) {
         printError(
-          "raytrace: error: \(Self.name(of: file)) would overwrite '\(Self.escaped(input))', which the scene reads.")
+          "raytrace: error: \(Self.name(of: file)) would overwrite '\(Self.escaped(input))', which the scene reads."
+        )
         throw ExitCode.validationFailure
       }
     }
@@ -255,10 +303,13 @@ struct Render: ParsableCommand {
 
   /// Refuses, before anything is allocated, an image whose buffers would
   /// not fit, saying how much memory it would need.
-  private func checkMemory(width: Int, height: Int, outputs: [RenderOutputs]) throws {
+  private func checkMemory(width: Int, height: Int, outputs: [RenderOutputs])
+    throws
+  {
     let (pixels, overflow) = width.multipliedReportingOverflow(by: height)
-    guard overflow || width > Self.maximumSide || height > Self.maximumSide
-      || pixels > Self.maximumPixels
+    guard
+      overflow || width > Self.maximumSide || height > Self.maximumSide
+        || pixels > Self.maximumPixels
     else { return }
     let all = outputs.reduce(into: RenderOutputs()) { $0.formUnion($1) }
     let scalar = precision == .float ? 4.0 : 8.0
@@ -274,9 +325,12 @@ struct Render: ParsableCommand {
         + "\(Self.maximumPixels) pixels in all.")
   }
 
-  private func checkedRange(_ low: Double, _ high: Double, option: String) throws -> ClosedRange<Double> {
+  private func checkedRange(_ low: Double, _ high: Double, option: String)
+    throws -> ClosedRange<Double>
+  {
     guard low.isFinite, high.isFinite, low < high else {
-      throw ValidationError("\(option) needs finite MIN < MAX; got \(low) \(high).")
+      throw ValidationError(
+        "\(option) needs finite MIN < MAX; got \(low) \(high).")
     }
     return low...high
   }
@@ -352,7 +406,8 @@ struct Render: ParsableCommand {
       "scene: \(scenePath): \(report.spheres) spheres, \(report.planes) planes, "
         + "\(report.triangles) triangles, \(report.ellipsoids) transformed spheres; "
         + "nearest sphere by \(report.sphereSearch), "
-        + "nearest triangle by \(report.usesTriangleHierarchy ? "BVH" : "testing each")")
+        + "nearest triangle by \(report.usesTriangleHierarchy ? "BVH" : "testing each")"
+    )
     printError(
       "size: \(settings.width)x\(settings.height), \(report.rays) rays, "
         + "precision \(settings.precision.rawValue), intersection \(settings.method.rawValue), "
@@ -360,7 +415,8 @@ struct Render: ParsableCommand {
         + "style \(settings.style.rawValue), threads \(settings.threads)")
     printError(
       "outputs: \(settings.outputs.names.joined(separator: ", "))"
-        + "; left out: \(report.leftOut.isEmpty ? "nothing" : report.leftOut.joined(separator: ", "))")
+        + "; left out: \(report.leftOut.isEmpty ? "nothing" : report.leftOut.joined(separator: ", "))"
+    )
     if report.texturedMaterials > 0 {
       printError(
         report.texturesRead > 0

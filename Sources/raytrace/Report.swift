@@ -5,7 +5,8 @@ import RayTracer
 struct Report: ParsableCommand {
   static let configuration = CommandConfiguration(
     commandName: "report",
-    abstract: "Measure each precision and intersection method against a high-precision reference.",
+    abstract:
+      "Measure each precision and intersection method against a high-precision reference.",
     discussion: """
       Renders every scene with float and double, naive and stable, times each \
       (median of --runs renders after a warm-up), compares depth and normals \
@@ -14,10 +15,15 @@ struct Report: ParsableCommand {
       |t − t_ref| / t_ref; ε is 2^-23 for float and 2^-52 for double.
       """)
 
-  @Argument(help: "Scene files (default: scenes/stiff/*.txt and the course-like scenes in scenes/).")
+  @Argument(
+    help:
+      "Scene files (default: scenes/stiff/*.txt and the course-like scenes in scenes/)."
+  )
   var scenes: [String] = []
 
-  @Option(parsing: .upToNextOption, help: ArgumentHelp("Image width and height.", valueName: "w h"))
+  @Option(
+    parsing: .upToNextOption,
+    help: ArgumentHelp("Image width and height.", valueName: "w h"))
   var size: [Int] = [400, 400]
 
   @Option(help: "Timed renders per row, after one warm-up.")
@@ -26,7 +32,9 @@ struct Report: ParsableCommand {
   @Option(help: "Worker threads for the timed renders (default: all cores).")
   var threads: Int?
 
-  @Option(help: ArgumentHelp("Also write the rows as CSV to this file.", valueName: "file"))
+  @Option(
+    help: ArgumentHelp(
+      "Also write the rows as CSV to this file.", valueName: "file"))
   var csv: String?
 
   @Option(
@@ -35,7 +43,10 @@ struct Report: ParsableCommand {
       valueName: "dir"))
   var heatmaps: String?
 
-  @Flag(help: "Leave out the antialiasing rows (shaded image, 1 to 64 samples against 1024).")
+  @Flag(
+    help:
+      "Leave out the antialiasing rows (shaded image, 1 to 64 samples against 1024)."
+  )
   var skipAntialiasing = false
 
   private var antialiasingHeader: String {
@@ -54,7 +65,9 @@ struct Report: ParsableCommand {
       throw ValidationError("--size takes two values between 1 and 4096.")
     }
     guard runs >= 1 else { throw ValidationError("--runs must be at least 1.") }
-    if let threads, threads < 1 { throw ValidationError("--threads must be at least 1.") }
+    if let threads, threads < 1 {
+      throw ValidationError("--threads must be at least 1.")
+    }
   }
 
   func run() throws {
@@ -67,7 +80,8 @@ struct Report: ParsableCommand {
       try checkOutputFolder(heatmaps)
     }
     if let csv {
-      try checked { () throws(OutputError) in try AtomicFile.checkWritable(csv) }
+      try checked { () throws(OutputError) in try AtomicFile.checkWritable(csv)
+      }
     }
     print(AccuracyRow.markdownHeader)
     for path in paths {
@@ -81,7 +95,8 @@ struct Report: ParsableCommand {
       let name = sceneName(path)
       for precision in Precision.allCases {
         let reference = AccuracyRender.reference(
-          scene, width: width, height: height, rays: precision, threads: threads)
+          scene, width: width, height: height, rays: precision, threads: threads
+        )
         for method in IntersectionMethod.allCases {
           let (buffers, seconds) = AccuracyRender.render(
             scene, width: width, height: height, precision: precision,
@@ -95,7 +110,8 @@ struct Report: ParsableCommand {
           rows.append(row)
           if let heatmaps {
             let image = ErrorHeatmap.image(
-              measurement, width: width, height: height, epsilon: buffers.epsilon)
+              measurement, width: width, height: height,
+              epsilon: buffers.epsilon)
             encodedMaps.append(
               (
                 PNGEncoder.encode(image),
@@ -122,21 +138,29 @@ struct Report: ParsableCommand {
           scene, width: w, height: h, samples: 1024, threads: threads, runs: 0)
         for samples in [1, 4, 16, 64] {
           let (color, seconds) = AntialiasingMeasurement.render(
-            scene, width: w, height: h, samples: samples, threads: threads, runs: runs)
+            scene, width: w, height: h, samples: samples, threads: threads,
+            runs: runs)
           let m = AntialiasingMeasurement(color, against: reference)
           print(
             "| \(sceneName(path)) | \(w)×\(h) | \(samples) | \(formatted(seconds * 1000, digits: 3)) | "
-              + "\(scientific(m.rootMeanSquare)) | \(formatted(m.maxLevels, digits: 3)) |")
+              + "\(scientific(m.rootMeanSquare)) | \(formatted(m.maxLevels, digits: 3)) |"
+          )
         }
       }
     }
     if let csv {
-      let text = ([AccuracyRow.csvHeader] + rows.map(\.csv)).joined(separator: "\n") + "\n"
-      try checked { () throws(OutputError) in try AtomicFile.write(Array(text.utf8), to: csv) }
+      let text =
+        ([AccuracyRow.csvHeader] + rows.map(\.csv)).joined(separator: "\n")
+        + "\n"
+      try checked { () throws(OutputError) in
+        try AtomicFile.write(Array(text.utf8), to: csv)
+      }
     }
     // Each heatmap is a file of its own, whole or absent.
     for map in encodedMaps {
-      try checked { () throws(OutputError) in try AtomicFile.write(map.bytes, to: map.path) }
+      try checked { () throws(OutputError) in
+        try AtomicFile.write(map.bytes, to: map.path)
+      }
     }
   }
 
@@ -145,7 +169,8 @@ struct Report: ParsableCommand {
     let stiff = listTextFiles(in: "scenes/stiff")
     guard !stiff.isEmpty else {
       throw ValidationError(
-        "No scenes given and scenes/stiff/ not found: run from the project's root or name the scenes.")
+        "No scenes given and scenes/stiff/ not found: run from the project's root or name the scenes."
+      )
     }
     return stiff + Self.defaultScenes
   }
@@ -160,7 +185,9 @@ struct Report: ParsableCommand {
   /// checks that files can be written in it.
   private func checkOutputFolder(_ folder: String) throws {
     mkdir(folder, 0o755)
-    try checked { () throws(OutputError) in try AtomicFile.checkWritable(folder + "/.probe") }
+    try checked { () throws(OutputError) in
+      try AtomicFile.checkWritable(folder + "/.probe")
+    }
   }
 
   private func checked(_ body: () throws(OutputError) -> Void) throws {
@@ -208,9 +235,11 @@ struct AccuracyRow {
   var csv: String {
     let m = measurement
     return [
-      scene, precision.rawValue, method.rawValue, "\(width)", "\(height)", "\(seconds)",
+      scene, precision.rawValue, method.rawValue, "\(width)", "\(height)",
+      "\(seconds)",
       "\(megaraysPerSecond)", "\(m.maxRelativeError)", "\(m.p99RelativeError)",
-      "\(m.maxRelativeError / epsilon)", "\(m.maxInteriorRelativeError / epsilon)",
+      "\(m.maxRelativeError / epsilon)",
+      "\(m.maxInteriorRelativeError / epsilon)",
       "\(m.disagreements)", "\(m.comparedHits)",
       "\(m.maxNormalErrorDegrees)",
     ].joined(separator: ",")

@@ -9,7 +9,8 @@ final class ErrorMessageTests: XCTestCase {
 
   /// The error that parsing `arguments` throws, or a failure.
   func parseError<C: ParsableCommand>(
-    _ type: C.Type, _ arguments: [String], file: StaticString = #filePath, line: UInt = #line
+    _ type: C.Type, _ arguments: [String], file: StaticString = #filePath,
+    line: UInt = #line
   ) -> Error? {
     do {
       var command = try C.parseAsRoot(arguments)
@@ -25,25 +26,37 @@ final class ErrorMessageTests: XCTestCase {
     _ type: C.Type, _ arguments: [String], _ message: String,
     file: StaticString = #filePath, line: UInt = #line
   ) {
-    guard let error = parseError(type, arguments, file: file, line: line) else { return }
+    guard let error = parseError(type, arguments, file: file, line: line) else {
+      return
+    }
     XCTAssertEqual(C.message(for: error), message, file: file, line: line)
-    XCTAssertEqual(C.exitCode(for: error), .validationFailure, file: file, line: line)
+    XCTAssertEqual(
+      C.exitCode(for: error), .validationFailure, file: file, line: line)
   }
 
   func testError_UnknownOption() {
-    assertMessage(Paint.self, ["s", "--frobnicate"], "Unknown option '--frobnicate'")
+    assertMessage(
+      Paint.self, ["s", "--frobnicate"], "Unknown option '--frobnicate'")
     assertMessage(Paint.self, ["s", "-x"], "Unknown option '-x'")
   }
 
   func testError_UnknownOptionSuggestsClosestName() {
-    assertMessage(Paint.self, ["s", "--outptu", "a.png"], "Unknown option '--outptu'. Did you mean '--output'?")
-    assertMessage(Paint.self, ["s", "-outptu", "a.png"], "Unknown option '-outptu'. Did you mean '-output'?")
-    assertMessage(Paint.self, ["s", "--png-levl", "3"], "Unknown option '--png-levl'. Did you mean '--png-level'?")
+    assertMessage(
+      Paint.self, ["s", "--outptu", "a.png"],
+      "Unknown option '--outptu'. Did you mean '--output'?")
+    assertMessage(
+      Paint.self, ["s", "-outptu", "a.png"],
+      "Unknown option '-outptu'. Did you mean '-output'?")
+    assertMessage(
+      Paint.self, ["s", "--png-levl", "3"],
+      "Unknown option '--png-levl'. Did you mean '--png-level'?")
   }
 
   func testError_MissingValue() {
-    assertMessage(Paint.self, ["s", "--size"], "Missing value for '--size <w h>'")
-    assertMessage(Paint.self, ["s", "-o", "--stats"], "Missing value for '-o <file>'")
+    assertMessage(
+      Paint.self, ["s", "--size"], "Missing value for '--size <w h>'")
+    assertMessage(
+      Paint.self, ["s", "-o", "--stats"], "Missing value for '-o <file>'")
   }
 
   func testError_MissingValueFullMessage() {
@@ -59,27 +72,32 @@ final class ErrorMessageTests: XCTestCase {
 
   func testError_InvalidValue() {
     assertMessage(
-      Paint.self, ["s", "--png-level", "abc"], "The value 'abc' is invalid for '--png-level <png-level>'")
+      Paint.self, ["s", "--png-level", "abc"],
+      "The value 'abc' is invalid for '--png-level <png-level>'")
     assertMessage(
-      Paint.self, ["s", "--size", "4", "x"], "The value 'x' is invalid for '--size <w h>'")
+      Paint.self, ["s", "--size", "4", "x"],
+      "The value 'x' is invalid for '--size <w h>'")
   }
 
   func testError_InvalidEnumValueListsChoices() {
     assertMessage(
       Paint.self, ["s", "--finish", "shiny"],
-      "The value 'shiny' is invalid for '--finish <finish>'. Please provide one of 'matte' and 'gloss'.")
+      "The value 'shiny' is invalid for '--finish <finish>'. Please provide one of 'matte' and 'gloss'."
+    )
   }
 
   func testError_InvalidPositionalValue() {
     struct Count: ParsableCommand {
       @Argument var count: Int
     }
-    assertMessage(Count.self, ["many"], "The value 'many' is invalid for '<count>'")
+    assertMessage(
+      Count.self, ["many"], "The value 'many' is invalid for '<count>'")
   }
 
   func testError_UnexpectedArguments() {
     assertMessage(Paint.self, ["s", "t"], "Unexpected argument 't'")
-    assertMessage(Paint.self, ["s", "t", "u"], "2 unexpected arguments: 't', 'u'")
+    assertMessage(
+      Paint.self, ["s", "t", "u"], "2 unexpected arguments: 't', 'u'")
   }
 
   func testError_FlagWithValue() {
@@ -90,7 +108,8 @@ final class ErrorMessageTests: XCTestCase {
 
   func testError_MissingArgumentOnEmptyLineShowsHelp() {
     guard let error = parseError(Paint.self, []) else { return }
-    XCTAssertEqual(Paint.message(for: error), "Missing expected argument '<scene>'")
+    XCTAssertEqual(
+      Paint.message(for: error), "Missing expected argument '<scene>'")
     XCTAssertEqual(Paint.exitCode(for: error), .validationFailure)
     XCTAssertEqual(
       Paint.fullMessage(for: error),
@@ -103,11 +122,13 @@ final class ErrorMessageTests: XCTestCase {
       @Option(help: "Your name.") var name: String
       @Flag var loud = false
     }
-    assertMessage(Named.self, ["--loud"], "Missing expected argument '--name <name>'")
+    assertMessage(
+      Named.self, ["--loud"], "Missing expected argument '--name <name>'")
   }
 
   func testError_ValidationErrorFromValidate() {
-    guard let error = parseError(Paint.self, ["s", "--size", "1", "2", "3"]) else { return }
+    guard let error = parseError(Paint.self, ["s", "--size", "1", "2", "3"])
+    else { return }
     XCTAssertEqual(Paint.exitCode(for: error), .validationFailure)
     XCTAssertEqual(
       Paint.fullMessage(for: error),
@@ -139,12 +160,15 @@ final class ErrorMessageTests: XCTestCase {
       var description: String { "the disk is full" }
     }
     XCTAssertEqual(Paint.exitCode(for: DiskFull()), .failure)
-    XCTAssertEqual(Paint.fullMessage(for: DiskFull()), "Error: the disk is full")
+    XCTAssertEqual(
+      Paint.fullMessage(for: DiskFull()), "Error: the disk is full")
   }
 
   func testHelpRequest_ExitsCleanly() throws {
     for flag in ["--help", "-h"] {
-      guard let error = parseError(Paint.self, ["s", "--bogus", flag]) else { return }
+      guard let error = parseError(Paint.self, ["s", "--bogus", flag]) else {
+        return
+      }
       XCTAssertEqual(Paint.exitCode(for: error), .success)
       XCTAssertEqual(Paint.fullMessage(for: error), Paint.helpMessage())
     }

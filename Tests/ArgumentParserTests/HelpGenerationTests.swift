@@ -114,13 +114,16 @@ final class HelpGenerationTests: XCTestCase {
       @Option var k: Int?
       @Option var l: Int?
     }
-    XCTAssertTrue(Many.helpMessage().hasPrefix("USAGE: many [<options>] <file>\n\n"))
+    XCTAssertTrue(
+      Many.helpMessage().hasPrefix("USAGE: many [<options>] <file>\n\n"))
   }
 
   func testHelp_HiddenFlagInversionAndDiscussion() {
     struct Shade: ParsableCommand {
       @Flag(inversion: .prefixedNo, help: "Use colour.") var colour = true
-      @Option(help: ArgumentHelp("The gamma.", discussion: "Applied after tone mapping."))
+      @Option(
+        help: ArgumentHelp(
+          "The gamma.", discussion: "Applied after tone mapping."))
       var gamma: Double = 2.2
       @Option(help: .hidden) var secret: String?
     }
@@ -135,7 +138,8 @@ final class HelpGenerationTests: XCTestCase {
 
       """
     XCTAssertEqual(Shade.helpMessage(), expected)
-    XCTAssertTrue(Shade.helpMessage(includeHidden: true).contains("  --secret <secret>\n"))
+    XCTAssertTrue(
+      Shade.helpMessage(includeHidden: true).contains("  --secret <secret>\n"))
   }
 
   func testHelp_WrapsToColumns() {

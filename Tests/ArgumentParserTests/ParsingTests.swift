@@ -22,13 +22,17 @@ final class ParsingTests: XCTestCase {
   }
 
   func testParse_LongOption() throws {
-    let command = try RenderLike.parse(["s", "--output", "a.png", "--threads", "4"])
+    let command = try RenderLike.parse([
+      "s", "--output", "a.png", "--threads", "4",
+    ])
     XCTAssertEqual(command.output, "a.png")
     XCTAssertEqual(command.threads, 4)
   }
 
   func testParse_EqualsForm() throws {
-    let command = try RenderLike.parse(["s", "--output=a=b.png", "--png-level=9", "-output=c.png"])
+    let command = try RenderLike.parse([
+      "s", "--output=a=b.png", "--png-level=9", "-output=c.png",
+    ])
     XCTAssertEqual(command.output, "c.png")
     XCTAssertEqual(command.pngLevel, 9)
     let first = try RenderLike.parse(["s", "--output=a=b.png"])
@@ -41,7 +45,9 @@ final class ParsingTests: XCTestCase {
   }
 
   func testParse_SingleDashLongOption() throws {
-    let command = try RenderLike.parse(["-input", "scene.txt", "-output", "a.png", "-size", "64", "48"])
+    let command = try RenderLike.parse([
+      "-input", "scene.txt", "-output", "a.png", "-size", "64", "48",
+    ])
     XCTAssertNil(command.scene)
     XCTAssertEqual(command.input, "scene.txt")
     XCTAssertEqual(command.output, "a.png")
@@ -49,20 +55,26 @@ final class ParsingTests: XCTestCase {
   }
 
   func testParse_SingleAndDoubleDashDepthAreDifferentOptions() throws {
-    let command = try RenderLike.parse(["s", "--depth", "d.png", "-depth", "1", "5", "e.pfm"])
+    let command = try RenderLike.parse([
+      "s", "--depth", "d.png", "-depth", "1", "5", "e.pfm",
+    ])
     XCTAssertEqual(command.depth, "d.png")
     XCTAssertEqual(command.assignmentDepth, ["1", "5", "e.pfm"])
   }
 
   func testParse_UpToNextOptionStopsAtNextOption() throws {
-    let command = try RenderLike.parse(["--size", "640", "480", "-o", "a.png", "scene.txt"])
+    let command = try RenderLike.parse([
+      "--size", "640", "480", "-o", "a.png", "scene.txt",
+    ])
     XCTAssertEqual(command.size, [640, 480])
     XCTAssertEqual(command.output, "a.png")
     XCTAssertEqual(command.scene, "scene.txt")
   }
 
   func testParse_UpToNextOptionStopsAtTerminator() throws {
-    let command = try RenderLike.parse(["--size", "640", "480", "--", "-scene.txt"])
+    let command = try RenderLike.parse([
+      "--size", "640", "480", "--", "-scene.txt",
+    ])
     XCTAssertEqual(command.size, [640, 480])
     XCTAssertEqual(command.scene, "-scene.txt")
   }
@@ -72,7 +84,9 @@ final class ParsingTests: XCTestCase {
       @Option(parsing: .upToNextOption) var numbers: [Int] = [7, 14]
       @Option var tag: [String] = ["a"]
     }
-    let command = try Lucky.parse(["--numbers", "1", "--tag", "x", "--numbers", "2", "3", "--tag", "y"])
+    let command = try Lucky.parse([
+      "--numbers", "1", "--tag", "x", "--numbers", "2", "3", "--tag", "y",
+    ])
     XCTAssertEqual(command.numbers, [1, 2, 3])
     XCTAssertEqual(command.tag, ["x", "y"])
     XCTAssertEqual(try Lucky.parse([]).numbers, [7, 14])
@@ -80,7 +94,10 @@ final class ParsingTests: XCTestCase {
 
   func testParse_NegativeNumbersAreValues() throws {
     let command = try RenderLike.parse(
-      ["s", "-depth", "-1", "5", "d.pfm", "--depth-range", "-0.5", "-.25", "--shift", "-3"])
+      [
+        "s", "-depth", "-1", "5", "d.pfm", "--depth-range", "-0.5", "-.25",
+        "--shift", "-3",
+      ])
     XCTAssertEqual(command.assignmentDepth, ["-1", "5", "d.pfm"])
     XCTAssertEqual(command.depthRange, [-0.5, -0.25])
     XCTAssertEqual(command.shift, -3)
@@ -97,11 +114,14 @@ final class ParsingTests: XCTestCase {
   }
 
   func testParse_EnumChoice() throws {
-    XCTAssertEqual(try RenderLike.parse(["s", "--precision", "float"]).precision, .float)
+    XCTAssertEqual(
+      try RenderLike.parse(["s", "--precision", "float"]).precision, .float)
   }
 
   func testParse_RepeatedSingleValueOptionKeepsLast() throws {
-    XCTAssertEqual(try RenderLike.parse(["s", "-o", "a.png", "--output", "b.png"]).output, "b.png")
+    XCTAssertEqual(
+      try RenderLike.parse(["s", "-o", "a.png", "--output", "b.png"]).output,
+      "b.png")
   }
 
   func testParse_Flag() throws {
@@ -150,7 +170,9 @@ final class ParsingTests: XCTestCase {
       @Option var maxURLLength = 10
       @Argument var inputFile: String
     }
-    let command = try Names.parse(["--png-level", "3", "--max-url-length", "4", "f"])
+    let command = try Names.parse([
+      "--png-level", "3", "--max-url-length", "4", "f",
+    ])
     XCTAssertEqual(command.pngLevel, 3)
     XCTAssertEqual(command.maxURLLength, 4)
     XCTAssertEqual(command.inputFile, "f")
@@ -166,12 +188,16 @@ final class ParsingTests: XCTestCase {
     struct Strategies: ParsableCommand {
       @Option(parsing: .unconditional) var raw: String?
       @Option(parsing: .scanningForValue) var scanned: String?
-      @Option(name: .customShort("I", allowingJoined: true)) var include: [String] = []
+      @Option(name: .customShort("I", allowingJoined: true)) var include:
+        [String] = []
       @Option(parsing: .remaining) var rest: [String] = []
       @Flag var flag = false
     }
     let command = try Strategies.parse(
-      ["--raw", "--flag", "--scanned", "--flag", "value", "-Ia", "-I", "b", "--rest", "-x", "--y"])
+      [
+        "--raw", "--flag", "--scanned", "--flag", "value", "-Ia", "-I", "b",
+        "--rest", "-x", "--y",
+      ])
     XCTAssertEqual(command.raw, "--flag")
     XCTAssertEqual(command.scanned, "value")
     XCTAssertTrue(command.flag)
@@ -183,7 +209,9 @@ final class ParsingTests: XCTestCase {
     struct Common: ParsableArguments {
       @Option var threads = 1
       mutating func validate() throws {
-        guard threads >= 1 else { throw ValidationError("--threads must be at least 1.") }
+        guard threads >= 1 else {
+          throw ValidationError("--threads must be at least 1.")
+        }
       }
     }
     struct Job: ParsableCommand {
@@ -211,7 +239,9 @@ final class ParsingTests: XCTestCase {
       @Argument(parsing: .postTerminator) var toolArguments: [String] = []
       @Flag var verbose = false
     }
-    let command = try Passthrough.parse(["--verbose", "cc", "--", "-O2", "--verbose"])
+    let command = try Passthrough.parse([
+      "--verbose", "cc", "--", "-O2", "--verbose",
+    ])
     XCTAssertEqual(command.tool, "cc")
     XCTAssertEqual(command.toolArguments, ["-O2", "--verbose"])
     XCTAssertTrue(command.verbose)
@@ -227,13 +257,17 @@ final class ParsingTests: XCTestCase {
 
   func testParse_ExclusiveFlag() throws {
     struct Exclusive: ParsableCommand {
-      @Flag(inversion: .prefixedEnableDisable, exclusivity: .exclusive) var cache = true
+      @Flag(inversion: .prefixedEnableDisable, exclusivity: .exclusive)
+      var cache = true
     }
     XCTAssertFalse(try Exclusive.parse(["--disable-cache"]).cache)
-    XCTAssertThrowsError(try Exclusive.parse(["--enable-cache", "--disable-cache"])) { error in
+    XCTAssertThrowsError(
+      try Exclusive.parse(["--enable-cache", "--disable-cache"])
+    ) { error in
       XCTAssertEqual(
         Exclusive.message(for: error),
-        "Value to be set with flag '--disable-cache' had already been set with flag '--enable-cache'")
+        "Value to be set with flag '--disable-cache' had already been set with flag '--enable-cache'"
+      )
     }
   }
 

@@ -17,14 +17,17 @@ final class SubcommandTests: XCTestCase {
   }
 
   func testDispatch_DefaultSubcommandWithSingleDashOptionsFirst() throws {
-    let command = try Draw.parseAsRoot(["-size", "3", "4", "-output", "a.png", "report"])
+    let command = try Draw.parseAsRoot([
+      "-size", "3", "4", "-output", "a.png", "report",
+    ])
     let paint = try XCTUnwrap(command as? Paint)
     XCTAssertEqual(paint.scene, "report")
     XCTAssertEqual(paint.size, [3, 4])
   }
 
   func testDispatch_ExplicitDefaultSubcommand() throws {
-    let paint = try XCTUnwrap(try Draw.parseAsRoot(["paint", "scene.txt"]) as? Paint)
+    let paint = try XCTUnwrap(
+      try Draw.parseAsRoot(["paint", "scene.txt"]) as? Paint)
     XCTAssertEqual(paint.scene, "scene.txt")
   }
 
@@ -34,15 +37,18 @@ final class SubcommandTests: XCTestCase {
 
   func testDispatch_Alias() throws {
     struct Shade: ParsableCommand {
-      static let configuration = CommandConfiguration(abstract: "Shade.", aliases: ["sh"])
+      static let configuration = CommandConfiguration(
+        abstract: "Shade.", aliases: ["sh"])
       @Flag var fast = false
     }
     struct Studio: ParsableCommand {
       static let configuration = CommandConfiguration(subcommands: [Shade.self])
     }
-    let shade = try XCTUnwrap(try Studio.parseAsRoot(["sh", "--fast"]) as? Shade)
+    let shade = try XCTUnwrap(
+      try Studio.parseAsRoot(["sh", "--fast"]) as? Shade)
     XCTAssertTrue(shade.fast)
-    XCTAssertTrue(Studio.helpMessage().contains("\n  shade, sh               Shade.\n"))
+    XCTAssertTrue(
+      Studio.helpMessage().contains("\n  shade, sh               Shade.\n"))
   }
 
   func testHelp_ForRootAndSubcommands() throws {
@@ -85,8 +91,10 @@ final class SubcommandTests: XCTestCase {
       _ = try Draw.parseAsRoot([])
       XCTFail("Expected an error")
     } catch {
-      XCTAssertEqual(Draw.message(for: error), "Missing expected argument '<scene>'")
-      XCTAssertTrue(Draw.fullMessage(for: error).hasSuffix("\n\n" + Draw.helpMessage()))
+      XCTAssertEqual(
+        Draw.message(for: error), "Missing expected argument '<scene>'")
+      XCTAssertTrue(
+        Draw.fullMessage(for: error).hasSuffix("\n\n" + Draw.helpMessage()))
     }
   }
 

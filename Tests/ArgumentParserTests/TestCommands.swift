@@ -13,27 +13,36 @@ enum Precision: String, CaseIterable, ExpressibleByArgument {
 /// The option shapes of `raytrace render`, including the assignment's
 /// single-dash spellings.
 struct RenderLike: ParsableCommand {
-  static let configuration = CommandConfiguration(commandName: "render", abstract: "Render a scene.")
+  static let configuration = CommandConfiguration(
+    commandName: "render", abstract: "Render a scene.")
 
   @Argument(help: "The scene file.")
   var scene: String?
 
   @Option(
     name: .customLong("input", withSingleDash: true),
-    help: ArgumentHelp("The scene file (the assignment's spelling).", valueName: "scene"))
+    help: ArgumentHelp(
+      "The scene file (the assignment's spelling).", valueName: "scene"))
   var input: String?
 
   @Option(
-    name: [.customShort("o"), .long, .customLong("output", withSingleDash: true)],
-    help: ArgumentHelp("Write the shaded image to this file.", valueName: "file"))
+    name: [
+      .customShort("o"), .long, .customLong("output", withSingleDash: true),
+    ],
+    help: ArgumentHelp(
+      "Write the shaded image to this file.", valueName: "file"))
   var output: String?
 
   @Option(
-    name: [.long, .customLong("size", withSingleDash: true)], parsing: .upToNextOption,
+    name: [.long, .customLong("size", withSingleDash: true)],
+    parsing: .upToNextOption,
     help: ArgumentHelp("Image width and height in pixels.", valueName: "w h"))
   var size: [Int] = []
 
-  @Option(name: .long, help: ArgumentHelp("Write the depth image to this file.", valueName: "file"))
+  @Option(
+    name: .long,
+    help: ArgumentHelp("Write the depth image to this file.", valueName: "file")
+  )
   var depth: String?
 
   @Option(
@@ -63,7 +72,8 @@ struct RenderLike: ParsableCommand {
 
   mutating func validate() throws {
     if scene != nil, input != nil {
-      throw ValidationError("Give the scene either as an argument or with -input, not both.")
+      throw ValidationError(
+        "Give the scene either as an argument or with -input, not both.")
     }
   }
 
@@ -81,12 +91,15 @@ struct Paint: ParsableCommand {
   var scene: String
 
   @Option(
-    name: [.customShort("o"), .long, .customLong("output", withSingleDash: true)],
+    name: [
+      .customShort("o"), .long, .customLong("output", withSingleDash: true),
+    ],
     help: ArgumentHelp("Write the image to this file.", valueName: "file"))
   var output: String?
 
   @Option(
-    name: [.long, .customLong("size", withSingleDash: true)], parsing: .upToNextOption,
+    name: [.long, .customLong("size", withSingleDash: true)],
+    parsing: .upToNextOption,
     help: ArgumentHelp("Width and height.", valueName: "w h"))
   var size: [Int] = []
 
@@ -94,7 +107,9 @@ struct Paint: ParsableCommand {
   var finish: Finish = .matte
 
   @Option(
-    help: "zlib level for PNG files, 0 to 9: lower is faster and larger, higher smaller and slower.")
+    help:
+      "zlib level for PNG files, 0 to 9: lower is faster and larger, higher smaller and slower."
+  )
   var pngLevel: Int = 6
 
   @Flag(help: "Print statistics.")
@@ -102,7 +117,8 @@ struct Paint: ParsableCommand {
 
   mutating func validate() throws {
     guard size.isEmpty || size.count == 2 else {
-      throw ValidationError("--size takes two values, W and H; got \(size.count).")
+      throw ValidationError(
+        "--size takes two values, W and H; got \(size.count).")
     }
   }
 }
@@ -122,7 +138,8 @@ struct Report: ParsableCommand {
 }
 
 struct Bench: ParsableCommand {
-  static let configuration = CommandConfiguration(abstract: "Time things.", shouldDisplay: false)
+  static let configuration = CommandConfiguration(
+    abstract: "Time things.", shouldDisplay: false)
 }
 
 /// Dispatches to `paint` by default, like `raytrace` to `render`.

@@ -214,18 +214,25 @@ func assertWellFormed(
   file: StaticString = #filePath, line: UInt = #line
 ) {
   let description = error.description
-  XCTAssertFalse(description.contains("\n"), "seed \(seed): more than one line", file: file, line: line)
+  XCTAssertFalse(
+    description.contains("\n"), "seed \(seed): more than one line", file: file,
+    line: line)
   XCTAssertTrue(
-    description.hasPrefix("\(error.file):\(error.line):\(error.column): error: "),
-    "seed \(seed): malformed description \(description.debugDescription)", file: file, line: line)
-  let lines = bytes.split(separator: UInt8(ascii: "\n"), omittingEmptySubsequences: false)
+    description.hasPrefix(
+      "\(error.file):\(error.line):\(error.column): error: "),
+    "seed \(seed): malformed description \(description.debugDescription)",
+    file: file, line: line)
+  let lines = bytes.split(
+    separator: UInt8(ascii: "\n"), omittingEmptySubsequences: false)
   XCTAssertTrue(
     (1...lines.count).contains(error.line),
-    "seed \(seed): line \(error.line) of \(lines.count)", file: file, line: line)
+    "seed \(seed): line \(error.line) of \(lines.count)", file: file, line: line
+  )
   if (1...lines.count).contains(error.line) {
     XCTAssertTrue(
       (1...(lines[error.line - 1].count + 1)).contains(error.column),
-      "seed \(seed): column \(error.column) on line \(error.line)", file: file, line: line)
+      "seed \(seed): column \(error.column) on line \(error.line)", file: file,
+      line: line)
   }
 }
 

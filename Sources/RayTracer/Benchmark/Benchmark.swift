@@ -20,16 +20,36 @@ public struct Workload: Sendable {
   /// sizes, random spheres from 100 to 10⁶, what leaving outputs out saves,
   /// and one thread against all.
   public static let standard: [Workload] = [
-    Workload(name: "course scene", source: .file("scenes/spheres.txt"), width: 800, height: 800, outputs: [.depth, .normals]),
-    Workload(name: "course scene", source: .file("scenes/spheres.txt"), width: 800, height: 800, outputs: [.depth, .normals, .shaded]),
-    Workload(name: "course scene", source: .file("scenes/spheres.txt"), width: 800, height: 800, threads: 1, outputs: [.depth, .normals, .shaded]),
-    Workload(name: "course scene", source: .file("scenes/spheres.txt"), width: 3840, height: 2160, outputs: [.depth, .normals, .shaded]),
-    Workload(name: "random spheres", source: .randomSpheres(100), width: 1920, height: 1080, outputs: [.depth, .normals]),
-    Workload(name: "random spheres", source: .randomSpheres(10_000), width: 1920, height: 1080, outputs: [.depth]),
-    Workload(name: "random spheres", source: .randomSpheres(10_000), width: 1920, height: 1080, outputs: [.depth, .normals]),
-    Workload(name: "random spheres", source: .randomSpheres(10_000), width: 1920, height: 1080, outputs: [.depth, .normals, .shaded]),
-    Workload(name: "random spheres", source: .randomSpheres(10_000), width: 1920, height: 1080, threads: 1, outputs: [.depth, .normals]),
-    Workload(name: "random spheres", source: .randomSpheres(1_000_000), width: 1920, height: 1080, outputs: [.depth, .normals]),
+    Workload(
+      name: "course scene", source: .file("scenes/spheres.txt"), width: 800,
+      height: 800, outputs: [.depth, .normals]),
+    Workload(
+      name: "course scene", source: .file("scenes/spheres.txt"), width: 800,
+      height: 800, outputs: [.depth, .normals, .shaded]),
+    Workload(
+      name: "course scene", source: .file("scenes/spheres.txt"), width: 800,
+      height: 800, threads: 1, outputs: [.depth, .normals, .shaded]),
+    Workload(
+      name: "course scene", source: .file("scenes/spheres.txt"), width: 3840,
+      height: 2160, outputs: [.depth, .normals, .shaded]),
+    Workload(
+      name: "random spheres", source: .randomSpheres(100), width: 1920,
+      height: 1080, outputs: [.depth, .normals]),
+    Workload(
+      name: "random spheres", source: .randomSpheres(10_000), width: 1920,
+      height: 1080, outputs: [.depth]),
+    Workload(
+      name: "random spheres", source: .randomSpheres(10_000), width: 1920,
+      height: 1080, outputs: [.depth, .normals]),
+    Workload(
+      name: "random spheres", source: .randomSpheres(10_000), width: 1920,
+      height: 1080, outputs: [.depth, .normals, .shaded]),
+    Workload(
+      name: "random spheres", source: .randomSpheres(10_000), width: 1920,
+      height: 1080, threads: 1, outputs: [.depth, .normals]),
+    Workload(
+      name: "random spheres", source: .randomSpheres(1_000_000), width: 1920,
+      height: 1080, outputs: [.depth, .normals]),
   ]
 
   public init(
@@ -103,9 +123,11 @@ public struct Benchmark {
       if access(path, R_OK) != 0 {
         mkdir(dataFolder, 0o755)
         do {
-          try AtomicFile.write(Array(RandomSpheres.sceneText(count: count).utf8), to: path)
+          try AtomicFile.write(
+            Array(RandomSpheres.sceneText(count: count).utf8), to: path)
         } catch {
-          throw Failure(description: "cannot write the benchmark scene: \(error)")
+          throw Failure(
+            description: "cannot write the benchmark scene: \(error)")
         }
       }
       return path
@@ -124,11 +146,15 @@ public struct Benchmark {
     let outputFolder = dataFolder + "/out"
     mkdir(dataFolder, 0o755)
     mkdir(outputFolder, 0o755)
-    if workload.outputs.contains(.depth) { arguments += ["--depth", outputFolder + "/depth.png"] }
+    if workload.outputs.contains(.depth) {
+      arguments += ["--depth", outputFolder + "/depth.png"]
+    }
     if workload.outputs.contains(.normals) {
       arguments += ["--normals", outputFolder + "/normals.png"]
     }
-    if workload.outputs.contains(.shaded) { arguments += ["-o", outputFolder + "/shaded.png"] }
+    if workload.outputs.contains(.shaded) {
+      arguments += ["-o", outputFolder + "/shaded.png"]
+    }
     var renderTimes: [Double] = []
     var wallTimes: [Double] = []
     var peak = 0
@@ -136,10 +162,13 @@ public struct Benchmark {
       let outcome = try Self.spawn(executable, arguments)
       guard outcome.status == 0 else {
         throw Failure(
-          description: "\(executable) \(arguments.joined(separator: " ")) failed: \(outcome.stderr)")
+          description:
+            "\(executable) \(arguments.joined(separator: " ")) failed: \(outcome.stderr)"
+        )
       }
       guard let seconds = Self.renderSeconds(inStats: outcome.stderr) else {
-        throw Failure(description: "no 'render:' line in the output of \(executable)")
+        throw Failure(
+          description: "no 'render:' line in the output of \(executable)")
       }
       peak = max(peak, outcome.peakBytes)
       if run > 0 {
@@ -149,9 +178,14 @@ public struct Benchmark {
     }
     // Twice as many warm renders as timed runs: one process's median is
     // noisier than a median over processes on this virtual machine.
-    let warm = try Self.spawn(executable, arguments + ["--repeat", "\(2 * runs)"])
-    guard warm.status == 0, let warmSeconds = Self.renderSeconds(inStats: warm.stderr) else {
-      throw Failure(description: "\(executable) --repeat \(2 * runs) failed: \(warm.stderr)")
+    let warm = try Self.spawn(
+      executable, arguments + ["--repeat", "\(2 * runs)"])
+    guard warm.status == 0,
+      let warmSeconds = Self.renderSeconds(inStats: warm.stderr)
+    else {
+      throw Failure(
+        description: "\(executable) --repeat \(2 * runs) failed: \(warm.stderr)"
+      )
     }
     return BenchmarkResult(
       workload: workload, scenePath: scene, threads: threads,
@@ -176,7 +210,9 @@ public struct Benchmark {
   }
 
   /// Runs a child with standard error captured, and its resource usage.
-  static func spawn(_ executable: String, _ arguments: [String]) throws -> Outcome {
+  static func spawn(_ executable: String, _ arguments: [String]) throws
+    -> Outcome
+  {
     guard let pipe = Platform.makePipe() else {
       throw Failure(description: "pipe failed")
     }

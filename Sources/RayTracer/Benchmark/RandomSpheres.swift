@@ -39,7 +39,8 @@ public enum RandomSpheres {
       let radius = Double.random(in: (largest / 2)...largest, using: &generator)
       let material = Int.random(in: 0..<4, using: &generator)
       groups[material].append(
-        "    Sphere { center \(short(x)) \(short(y)) \(short(z))  radius \(short(radius)) }")
+        "    Sphere { center \(short(x)) \(short(y)) \(short(z))  radius \(short(radius)) }"
+      )
     }
     var text = """
       PerspectiveCamera {

@@ -27,7 +27,8 @@ public enum PNGDecoder {
       let typeBytes = Array(bytes[(offset + 4)..<(offset + 8)])
       let type = String(decoding: typeBytes, as: UTF8.self)
       guard length <= bytes.count - offset - 12 else {
-        throw Failure(description: "chunk \(type) runs past the end of the file")
+        throw Failure(
+          description: "chunk \(type) runs past the end of the file")
       }
       let data = Array(bytes[(offset + 8)..<(offset + 8 + length)])
       let crc = readBigEndian(bytes, offset + 8 + length)
@@ -36,17 +37,21 @@ public enum PNGDecoder {
       }
       switch type {
       case "IHDR":
-        guard data.count == 13 else { throw Failure(description: "bad IHDR length") }
+        guard data.count == 13 else {
+          throw Failure(description: "bad IHDR length")
+        }
         width = Int(readBigEndian(data, 0))
         height = Int(readBigEndian(data, 4))
         guard data[8] == 8, data[12] == 0 else {
-          throw Failure(description: "only 8-bit non-interlaced images are read")
+          throw Failure(
+            description: "only 8-bit non-interlaced images are read")
         }
         switch data[9] {
         case 0: channels = 1
         case 2: channels = 3
         case 6: channels = 4
-        default: throw Failure(description: "colour type \(data[9]) is not read")
+        default:
+          throw Failure(description: "colour type \(data[9]) is not read")
         }
       case "IDAT": compressed += data
       case "IEND": sawEnd = true
@@ -62,7 +67,8 @@ public enum PNGDecoder {
     var rawLength = uLongf(raw.count)
     let status = raw.withUnsafeMutableBufferPointer { out in
       compressed.withUnsafeBufferPointer { input in
-        uncompress(out.baseAddress, &rawLength, input.baseAddress, uLong(input.count))
+        uncompress(
+          out.baseAddress, &rawLength, input.baseAddress, uLong(input.count))
       }
     }
     guard status == Z_OK, Int(rawLength) == raw.count else {
@@ -75,7 +81,9 @@ public enum PNGDecoder {
         let x = raw[row * (stride + 1) + 1 + i]
         let a = i >= channels ? pixels[row * stride + i - channels] : 0
         let b = row > 0 ? pixels[(row - 1) * stride + i] : 0
-        let c = row > 0 && i >= channels ? pixels[(row - 1) * stride + i - channels] : 0
+        let c =
+          row > 0 && i >= channels
+          ? pixels[(row - 1) * stride + i - channels] : 0
         let predictor: UInt8
         switch type {
         case 0: predictor = 0
@@ -83,7 +91,8 @@ public enum PNGDecoder {
         case 2: predictor = b
         case 3: predictor = UInt8((Int(a) + Int(b)) / 2)
         case 4: predictor = PNGEncoder.paeth(a, b, c)
-        default: throw Failure(description: "row \(row) has filter type \(type)")
+        default:
+          throw Failure(description: "row \(row) has filter type \(type)")
         }
         pixels[row * stride + i] = x &+ predictor
       }

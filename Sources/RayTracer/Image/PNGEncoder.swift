@@ -56,7 +56,9 @@ public enum PNGEncoder {
     return bytes
   }
 
-  static func appendChunk(_ type: String, _ data: [UInt8], to bytes: inout [UInt8]) {
+  static func appendChunk(
+    _ type: String, _ data: [UInt8], to bytes: inout [UInt8]
+  ) {
     bytes.appendBigEndian(UInt32(data.count))
     let typeBytes = Array(type.utf8)
     bytes += typeBytes
@@ -72,7 +74,8 @@ public enum PNGEncoder {
       // zlib's length is 32-bit: feed very large buffers in slices.
       while offset < buffer.count {
         let length = min(buffer.count - offset, 1 << 30)
-        crc = CZlib.crc32(crc, buffer.baseAddress.map { $0 + offset }, uInt(length))
+        crc = CZlib.crc32(
+          crc, buffer.baseAddress.map { $0 + offset }, uInt(length))
         offset += length
       }
       return UInt32(crc)
@@ -84,7 +87,9 @@ public enum PNGEncoder {
     var output = [UInt8](repeating: 0, count: Int(length))
     let status = output.withUnsafeMutableBufferPointer { out in
       data.withUnsafeBufferPointer { input in
-        compress2(out.baseAddress, &length, input.baseAddress, uLong(input.count), level)
+        compress2(
+          out.baseAddress, &length, input.baseAddress, uLong(input.count), level
+        )
       }
     }
     // compressBound guarantees room, and the arguments are valid, so zlib
@@ -100,22 +105,28 @@ public enum PNGEncoder {
     var out = [UInt8](repeating: 0, count: image.height * (stride + 1))
     image.bytes.withUnsafeBufferPointer { pixels in
       out.withUnsafeMutableBufferPointer { out in
-        var candidates = [UInt8](repeating: 0, count: filter == .adaptive ? stride : 0)
+        var candidates = [UInt8](
+          repeating: 0, count: filter == .adaptive ? stride : 0)
         for row in 0..<image.height {
-          let current = UnsafeBufferPointer(rebasing: pixels[(row * stride)..<((row + 1) * stride)])
+          let current = UnsafeBufferPointer(
+            rebasing: pixels[(row * stride)..<((row + 1) * stride)])
           let previous =
             row > 0
-            ? UnsafeBufferPointer(rebasing: pixels[((row - 1) * stride)..<(row * stride)])
+            ? UnsafeBufferPointer(
+              rebasing: pixels[((row - 1) * stride)..<(row * stride)])
             : nil
           let target = UnsafeMutableBufferPointer(
-            rebasing: out[(row * (stride + 1) + 1)..<((row + 1) * (stride + 1))])
+            rebasing: out[(row * (stride + 1) + 1)..<((row + 1) * (stride + 1))]
+          )
           var chosen = filter
           if filter == .adaptive {
             var bestCost = Int.max
             for option in [PNGFilter.none, .sub, .up, .paeth] {
               let cost = candidates.withUnsafeMutableBufferPointer { scratch in
                 apply(option, current, previous, into: scratch)
-                return scratch.reduce(0) { $0 + Int(Int8(bitPattern: $1).magnitude) }
+                return scratch.reduce(0) {
+                  $0 + Int(Int8(bitPattern: $1).magnitude)
+                }
               }
               if cost < bestCost {
                 bestCost = cost
@@ -134,13 +145,15 @@ public enum PNGEncoder {
   /// Filters one row; `previous` is nil for the first row (treated as zeros).
   static func apply(
     _ filter: PNGFilter, _ row: UnsafeBufferPointer<UInt8>,
-    _ previous: UnsafeBufferPointer<UInt8>?, into out: UnsafeMutableBufferPointer<UInt8>
+    _ previous: UnsafeBufferPointer<UInt8>?,
+    into out: UnsafeMutableBufferPointer<UInt8>
   ) {
     let bytesPerPixel = 3
     for i in 0..<row.count {
       let left = i >= bytesPerPixel ? row[i - bytesPerPixel] : 0
       let above = previous?[i] ?? 0
-      let upperLeft = i >= bytesPerPixel ? (previous?[i - bytesPerPixel] ?? 0) : 0
+      let upperLeft =
+        i >= bytesPerPixel ? (previous?[i - bytesPerPixel] ?? 0) : 0
       let predictor: UInt8
       switch filter {
       case .none, .adaptive: predictor = 0

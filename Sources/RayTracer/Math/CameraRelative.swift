@@ -17,7 +17,8 @@ public enum CameraRelative {
     let dz = Compensated.twoSum(center.z, -eye.z)
     let radiusSquared = Compensated.twoProduct(radius, radius)
     let offset = Vector3<S>(
-      narrowed(dx.sum, dx.error), narrowed(dy.sum, dy.error), narrowed(dz.sum, dz.error))
+      narrowed(dx.sum, dx.error), narrowed(dy.sum, dy.error),
+      narrowed(dz.sum, dz.error))
     // On the stack: this runs once per sphere, a million times for the
     // largest scenes.
     func sum(keepingZeros: Bool) -> S {
@@ -40,7 +41,8 @@ public enum CameraRelative {
         appendSquare(dz)
         append(-radiusSquared.product)
         append(-radiusSquared.error)
-        return roundedSum(UnsafeMutableBufferPointer(rebasing: terms[0..<count]))
+        return roundedSum(
+          UnsafeMutableBufferPointer(rebasing: terms[0..<count]))
       }
     }
     // Zero terms (two for each coordinate where centre − eye is exact, as
@@ -62,7 +64,10 @@ public enum CameraRelative {
     let py = Compensated.twoProduct(normal.y, eye.y)
     let pz = Compensated.twoProduct(normal.z, eye.z)
     // Planes are few: an array is fine here.
-    var terms = [offset, -px.product, -px.error, -py.product, -py.error, -pz.product, -pz.error]
+    var terms = [
+      offset, -px.product, -px.error, -py.product, -py.error, -pz.product,
+      -pz.error,
+    ]
     return terms.withUnsafeMutableBufferPointer { roundedSum($0) }
   }
 
@@ -91,7 +96,9 @@ public enum CameraRelative {
   }
 
   /// sum + error (exact, |error| ≤ ulp(sum)/2) in S, rounded once.
-  static func narrowed<Input: RayScalar, S: RayScalar>(_ sum: Input, _ error: Input) -> S {
+  static func narrowed<Input: RayScalar, S: RayScalar>(
+    _ sum: Input, _ error: Input
+  ) -> S {
     if S.significandBitCount > Input.significandBitCount {
       return S(sum) + S(error)
     }

@@ -9,7 +9,8 @@
 public enum Compensated {
   /// s + e == a + b exactly, with s = fl(a + b) (Knuth's TwoSum, no branch).
   @inlinable
-  public static func twoSum<S: RayScalar>(_ a: S, _ b: S) -> (sum: S, error: S) {
+  public static func twoSum<S: RayScalar>(_ a: S, _ b: S) -> (sum: S, error: S)
+  {
     let s = a + b
     let bVirtual = s - a
     let aVirtual = s - bVirtual
@@ -67,7 +68,8 @@ public enum Compensated {
   @inlinable
   public static func sumPair<Terms: Sequence>(
     _ terms: Terms
-  ) -> (sum: Terms.Element, error: Terms.Element) where Terms.Element: RayScalar {
+  ) -> (sum: Terms.Element, error: Terms.Element)
+  where Terms.Element: RayScalar {
     var total: Terms.Element = 0
     var errors: Terms.Element = 0
     for term in terms {

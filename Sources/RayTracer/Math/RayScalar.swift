@@ -12,12 +12,12 @@ public protocol RayScalar: Real, BinaryFloatingPoint, Sendable {}
 extension Float: RayScalar {}
 extension Double: RayScalar {}
 #if (arch(i386) || arch(x86_64)) && !os(Windows) && !os(Android)
-extension Float80: RayScalar {}
+  extension Float80: RayScalar {}
 
-/// The widest floating-point type available: the reference precision.
-public typealias ReferenceScalar = Float80
+  /// The widest floating-point type available: the reference precision.
+  public typealias ReferenceScalar = Float80
 #else
-public typealias ReferenceScalar = Double
+  public typealias ReferenceScalar = Double
 #endif
 
 /// The precision a render computes in, as chosen on the command line.

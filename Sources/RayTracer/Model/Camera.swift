@@ -74,7 +74,9 @@ public struct PerspectiveCamera<Scalar: RayScalar>: Hashable, Sendable {
 
   /// The unit direction through screen point (x, y); `aspect` is H / W.
   @inlinable
-  public func rayDirection(x: Scalar, y: Scalar, aspect: Scalar) -> Vector3<Scalar> {
+  public func rayDirection(x: Scalar, y: Scalar, aspect: Scalar) -> Vector3<
+    Scalar
+  > {
     rayDirection(x: x, rowBase: rowBase(y: y, aspect: aspect))
   }
 
@@ -87,7 +89,9 @@ public struct PerspectiveCamera<Scalar: RayScalar>: Hashable, Sendable {
 
   /// The unit direction through screen x on the row of `rowBase`.
   @inlinable
-  public func rayDirection(x: Scalar, rowBase: Vector3<Scalar>) -> Vector3<Scalar> {
+  public func rayDirection(x: Scalar, rowBase: Vector3<Scalar>) -> Vector3<
+    Scalar
+  > {
     (horizontal * x + rowBase).normalizedByReciprocal()
   }
 }

@@ -7,7 +7,9 @@ public struct Group<Scalar: RayScalar>: Hashable, Sendable {
   }
 
   /// Every sphere and plane, nested groups flattened, in file order.
-  public func primitives() -> (spheres: [Sphere<Scalar>], planes: [Plane<Scalar>]) {
+  public func primitives() -> (
+    spheres: [Sphere<Scalar>], planes: [Plane<Scalar>]
+  ) {
     let all = flattened()
     return (all.spheres, all.planes)
   }

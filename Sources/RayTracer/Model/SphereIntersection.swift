@@ -46,7 +46,8 @@ public enum SphereIntersection {
   ///   including a tangent ray whose double root lies outside the interval.
   @inlinable @inline(__always)
   public static func stableRoot<S: RayScalar>(
-    direction d: Vector3<S>, lengthSquared a: S, inverseLengthSquared inverseA: S,
+    direction d: Vector3<S>, lengthSquared a: S,
+    inverseLengthSquared inverseA: S,
     offset p: Vector3<S>, c: S, radiusSquared: S,
     after tMin: S, before tMax: S
   ) -> (t: S, entering: Bool)? {

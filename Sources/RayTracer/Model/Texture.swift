@@ -12,7 +12,8 @@ public struct Texture: Hashable, Sendable {
   /// the left edge, v = 0 the bottom and u = 1 or v = 1 the last texel.
   /// Coordinates outside [0, 1] (or NaN) take the nearest edge's texel.
   @inlinable
-  public func color<S: RayScalar>(at coordinate: TextureCoordinate<S>) -> RGB<S> {
+  public func color<S: RayScalar>(at coordinate: TextureCoordinate<S>) -> RGB<S>
+  {
     let column = Self.index(coordinate.u, count: image.width)
     let row = Self.index(1 - coordinate.v, count: image.height)
     let (r, g, b) = image[column, row]

@@ -107,7 +107,8 @@ extension SceneObject {
       objects += all.triangles.map { .triangle($0) }
       objects += all.transformedSpheres.map {
         .transform(
-          Transform(matrix: $0.matrix, inverse: $0.inverse, object: .sphere($0.sphere)))
+          Transform(
+            matrix: $0.matrix, inverse: $0.inverse, object: .sphere($0.sphere)))
       }
       return .group(Group(objects))
     }
@@ -166,7 +167,10 @@ extension Group {
     result.spheres.reserveCapacityOnHugePages(counts.spheres)
     result.planes.reserveCapacity(counts.planes)
     result.triangles.reserveCapacity(counts.triangles)
-    func collect(_ object: SceneObject<Scalar>, _ transform: (Matrix4<Scalar>, Matrix4<Scalar>)?) {
+    func collect(
+      _ object: SceneObject<Scalar>,
+      _ transform: (Matrix4<Scalar>, Matrix4<Scalar>)?
+    ) {
       switch object {
       case .sphere(let sphere):
         guard let (matrix, inverse) = transform else {
@@ -176,7 +180,8 @@ extension Group {
         if let scale = matrix.similarityScale {
           result.spheres.append(
             Sphere(
-              center: matrix.transformPoint(sphere.center), radius: sphere.radius * scale,
+              center: matrix.transformPoint(sphere.center),
+              radius: sphere.radius * scale,
               materialIndex: sphere.materialIndex))
         } else {
           result.transformedSpheres.append(
@@ -190,7 +195,9 @@ extension Group {
         let normal = matrix.transformNormal(plane.normal)
         let point = matrix.transformPoint(plane.normal * plane.offset)
         result.planes.append(
-          Plane(normal: normal, offset: normal.dot(point), materialIndex: plane.materialIndex))
+          Plane(
+            normal: normal, offset: normal.dot(point),
+            materialIndex: plane.materialIndex))
       case .triangle(let triangle):
         guard let (matrix, _) = transform else {
           result.triangles.append(triangle)

@@ -39,8 +39,10 @@ public struct Triangle<Scalar: RayScalar>: Hashable, Sendable {
     public var t1: TextureCoordinate<Scalar>
     public var t2: TextureCoordinate<Scalar>
 
-    public init(_ t0: TextureCoordinate<Scalar>, _ t1: TextureCoordinate<Scalar>, _ t2: TextureCoordinate<Scalar>)
-    {
+    public init(
+      _ t0: TextureCoordinate<Scalar>, _ t1: TextureCoordinate<Scalar>,
+      _ t2: TextureCoordinate<Scalar>
+    ) {
       self.t0 = t0
       self.t1 = t1
       self.t2 = t2
@@ -48,7 +50,8 @@ public struct Triangle<Scalar: RayScalar>: Hashable, Sendable {
 
     /// The coordinates at barycentrics (u, v, w) of v0, v1 and v2.
     @inlinable
-    public func at(u: Scalar, v: Scalar, w: Scalar) -> TextureCoordinate<Scalar> {
+    public func at(u: Scalar, v: Scalar, w: Scalar) -> TextureCoordinate<Scalar>
+    {
       TextureCoordinate(
         t0.u * u + t1.u * v + t2.u * w, t0.v * u + t1.v * v + t2.v * w)
     }
@@ -76,8 +79,9 @@ public struct Triangle<Scalar: RayScalar>: Hashable, Sendable {
         VertexNormals(Vector3($0.n0), Vector3($0.n1), Vector3($0.n2))
       },
       textureCoordinates: other.textureCoordinates.map {
-        TextureCoordinates(TextureCoordinate($0.t0), TextureCoordinate($0.t1),
-              TextureCoordinate($0.t2))
+        TextureCoordinates(
+          TextureCoordinate($0.t0), TextureCoordinate($0.t1),
+          TextureCoordinate($0.t2))
       },
       materialIndex: other.materialIndex)
   }

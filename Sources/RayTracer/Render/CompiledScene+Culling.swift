@@ -2,21 +2,26 @@
 /// projection, each tile of pixels tests only the spheres its rays may hit.
 extension CompiledScene {
   /// Whether per-tile culling applies: spheres without a hierarchy.
-  var cullsPerTile: Bool { hierarchy == nil && !projectsSpheres && spheres.count > 1 }
+  var cullsPerTile: Bool {
+    hierarchy == nil && !projectsSpheres && spheres.count > 1
+  }
 
   /// A sphere's centre relative to the rays' origin and the distance from
   /// it that any pixel's ray the kernel reports hitting the sphere comes
   /// within: the hierarchy's reach, plus the rounding of the ray's own
   /// direction (64 ε of the render's precision times the distance).
   @inline(__always)
-  func cullBound(_ record: Kernel.SphereRecord) -> (center: Vector3<Double>, radius: Double) {
+  func cullBound(_ record: Kernel.SphereRecord) -> (
+    center: Vector3<Double>, radius: Double
+  ) {
     let model: BoundingVolumeHierarchy<Scalar>.ErrorModel =
       Kernel.self == StableKernel<Scalar>.self ? .cancellationFree : .textbook
     let (center, radius) = Kernel.centerAndRadius(record)
     let offset = center - rayOrigin
     let reach = Double(
       BoundingVolumeHierarchy<Scalar>.reach(
-        radius: radius.magnitude, distance: offset.length * (1 + 8 * Scalar.ulpOfOne),
+        radius: radius.magnitude,
+        distance: offset.length * (1 + 8 * Scalar.ulpOfOne),
         model: model))
     let centre = Vector3<Double>(offset)
     let slack = 64 * Double(Scalar.ulpOfOne)
@@ -31,7 +36,9 @@ extension CompiledScene {
   /// one of the pyramid's faces, so the nearest hit of every ray in the
   /// tile is the same as testing every sphere.
   func cullSpheres(
-    corners: (Vector3<Double>, Vector3<Double>, Vector3<Double>, Vector3<Double>),
+    corners: (
+      Vector3<Double>, Vector3<Double>, Vector3<Double>, Vector3<Double>
+    ),
     into candidates: UnsafeMutableBufferPointer<Int32>
   ) -> Int {
     // Four faces in a tuple: this runs for every tile, and arrays here

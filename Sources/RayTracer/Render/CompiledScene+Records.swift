@@ -41,8 +41,11 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
   func normal(of ray: CameraRay<Scalar>) -> Vector3<Scalar> {
     let geometric = geometricNormal ?? .zero
     guard normals != nil else { return geometric }
-    let prepared = WatertightRay(Ray(origin: ray.origin, direction: ray.direction))
-    guard let hit = intersect(prepared, before: .infinity) else { return geometric }
+    let prepared = WatertightRay(
+      Ray(origin: ray.origin, direction: ray.direction))
+    guard let hit = intersect(prepared, before: .infinity) else {
+      return geometric
+    }
     return normal(u: hit.u, v: hit.v, w: hit.w)
   }
 
@@ -83,6 +86,7 @@ struct EllipsoidRecord<Kernel: IntersectionKernel>: Sendable {
     let d = ray.direction
     return CameraRay(
       origin: origin,
-      direction: Vector3(inverseRows.0.dot(d), inverseRows.1.dot(d), inverseRows.2.dot(d)))
+      direction: Vector3(
+        inverseRows.0.dot(d), inverseRows.1.dot(d), inverseRows.2.dot(d)))
   }
 }

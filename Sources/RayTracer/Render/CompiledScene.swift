@@ -72,9 +72,13 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     let all = scene.root.flattened()
     let (sphereList, planeList) = (all.spheres, all.planes)
     spheres = Self.map(sphereList) { Kernel.makeSphere($0, eye: eyeDouble) }
-    sphereMaterials = sphereList.map { Int32(truncatingIfNeeded: $0.materialIndex) }
+    sphereMaterials = sphereList.map {
+      Int32(truncatingIfNeeded: $0.materialIndex)
+    }
     planes = planeList.map { Kernel.makePlane($0, eye: eyeDouble) }
-    planeMaterials = planeList.map { Int32(truncatingIfNeeded: $0.materialIndex) }
+    planeMaterials = planeList.map {
+      Int32(truncatingIfNeeded: $0.materialIndex)
+    }
     materials = scene.materials.map(Material.init)
     self.textures = textures.contains { $0 != nil } ? textures : []
     lights = scene.lights.map(Light.init)
@@ -119,12 +123,14 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     _ elements: [Element], _ transform: (Element) -> Result
   ) -> [Result] {
     let parts = elements.count >= 1 << 16 ? 2 : 1
-    return Array(unsafeUninitializedCapacity: elements.count) { results, initialized in
+    return Array(unsafeUninitializedCapacity: elements.count) {
+      results, initialized in
       Memory.adviseHugePages(UnsafeMutableRawBufferPointer(results))
       elements.withUnsafeBufferPointer { elements in
         Parallel.inParts(elements.count, parts) { _, range in
           for index in range {
-            (results.baseAddress! + index).initialize(to: transform(elements[index]))
+            (results.baseAddress! + index).initialize(
+              to: transform(elements[index]))
           }
         }
       }
@@ -144,17 +150,21 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
         return CameraRelative.narrowed(difference.sum, difference.error)
       }
       return Vector3(
-        component(point.x, eye.x), component(point.y, eye.y), component(point.z, eye.z))
+        component(point.x, eye.x), component(point.y, eye.y),
+        component(point.z, eye.z))
     }
     for triangle in all.triangles {
       let record = TriangleRecord<Scalar>(
         v0: frame(triangle.v0), v1: frame(triangle.v1), v2: frame(triangle.v2),
-        normals: triangle.vertexNormals.map { Triangle<Scalar>.VertexNormals(
-          Vector3($0.n0), Vector3($0.n1), Vector3($0.n2)) })
+        normals: triangle.vertexNormals.map {
+          Triangle<Scalar>.VertexNormals(
+            Vector3($0.n0), Vector3($0.n1), Vector3($0.n2))
+        })
       // A degenerate triangle is never hit: leaving it out changes nothing.
       guard record.geometricNormal != nil else { continue }
       triangles.append(record)
-      triangleMaterials.append(Int32(truncatingIfNeeded: triangle.materialIndex))
+      triangleMaterials.append(
+        Int32(truncatingIfNeeded: triangle.materialIndex))
       if !textures.isEmpty {
         triangleTextureCoordinates.append(
           triangle.textureCoordinates.map {
@@ -176,7 +186,9 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
           Swift.max(record.v0.z, record.v1.z, record.v2.z))
         // Rounded out by a few ulps of the largest coordinate: the
         // watertight test decides on the sheared, rounded vertices.
-        let pad = 4 * Scalar.ulpOfOne * Swift.max(lower.maxMagnitude, upper.maxMagnitude)
+        let pad =
+          4 * Scalar.ulpOfOne
+          * Swift.max(lower.maxMagnitude, upper.maxMagnitude)
         let padding = Vector3(pad, pad, pad)
         return (lower: lower - padding, upper: upper + padding)
       }
@@ -189,7 +201,8 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
         }
       }
       triangleHierarchy = bvh
-      wideTriangleHierarchy = WideHierarchy(bvh, rayOrigin: Kernel.frameOrigin(eye: eye))
+      wideTriangleHierarchy = WideHierarchy(
+        bvh, rayOrigin: Kernel.frameOrigin(eye: eye))
     }
     for ellipsoid in all.transformedSpheres {
       let objectEye = ellipsoid.inverse.transformPoint(eye)
@@ -204,7 +217,8 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
             Vector3(inverse.m20, inverse.m21, inverse.m22)
           ),
           matrix: Matrix4<Scalar>(ellipsoid.matrix)))
-      ellipsoidMaterials.append(Int32(truncatingIfNeeded: ellipsoid.sphere.materialIndex))
+      ellipsoidMaterials.append(
+        Int32(truncatingIfNeeded: ellipsoid.sphere.materialIndex))
     }
   }
 
@@ -247,7 +261,9 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     } else if let hierarchy {
       spheres.withUnsafeBufferPointer { records in
         let leaves = SphereLeaves<Kernel>(records: records, ray: ray)
-        if let hit = hierarchy.nearest(ray, before: tBest, leaves: leaves, wide: wideHierarchy) {
+        if let hit = hierarchy.nearest(
+          ray, before: tBest, leaves: leaves, wide: wideHierarchy)
+        {
           tBest = hit.t
           best = .sphere(hit.index)
         }
@@ -280,7 +296,8 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       }
     }
     if !triangles.isEmpty {
-      let prepared = WatertightRay(Ray(origin: ray.origin, direction: ray.direction))
+      let prepared = WatertightRay(
+        Ray(origin: ray.origin, direction: ray.direction))
       triangles.withUnsafeBufferPointer { records in
         if let triangleHierarchy {
           let leaves = TriangleLeaves(records: records, ray: prepared)
@@ -302,7 +319,9 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     }
     for index in ellipsoids.indices {
       let local = ellipsoids[index].localRay(ray)
-      if let t = Kernel.intersect(ellipsoids[index].sphere, local, before: tBest) {
+      if let t = Kernel.intersect(
+        ellipsoids[index].sphere, local, before: tBest)
+      {
         tBest = t
         best = .ellipsoid(index)
       }
@@ -311,7 +330,9 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     return (tBest, best)
   }
 
-  func normal(of what: Nearest, _ ray: CameraRay<Scalar>, t: Scalar) -> Vector3<Scalar> {
+  func normal(of what: Nearest, _ ray: CameraRay<Scalar>, t: Scalar) -> Vector3<
+    Scalar
+  > {
     switch what {
     case .sphere(let index): Kernel.normal(spheres[index], ray, t: t)
     case .plane(let index): Kernel.normal(planes[index])
@@ -319,7 +340,8 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       triangles[index].normal(of: ray)
     case .ellipsoid(let index):
       ellipsoids[index].matrix.transformNormal(
-        Kernel.normal(ellipsoids[index].sphere, ellipsoids[index].localRay(ray), t: t))
+        Kernel.normal(
+          ellipsoids[index].sphere, ellipsoids[index].localRay(ray), t: t))
     }
   }
 

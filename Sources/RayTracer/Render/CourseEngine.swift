@@ -130,7 +130,8 @@ public enum CourseEngine {
     let color: UnsafeMutableBufferPointer<RGB<Double>>
 
     init(count: Int, outputs: RenderOutputs) {
-      func buffer<T>(_ wanted: Bool, _ zero: T) -> UnsafeMutableBufferPointer<T> {
+      func buffer<T>(_ wanted: Bool, _ zero: T) -> UnsafeMutableBufferPointer<T>
+      {
         let buffer = UnsafeMutableBufferPointer<T>.allocate(
           capacity: wanted ? count : 0)
         buffer.initialize(repeating: zero)

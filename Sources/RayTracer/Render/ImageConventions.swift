@@ -61,7 +61,8 @@ extension ImageStyle {
       let mapped: Vector3<S>
       switch self {
       case .course:
-        mapped = Vector3(normal.x.magnitude, normal.y.magnitude, normal.z.magnitude)
+        mapped = Vector3(
+          normal.x.magnitude, normal.y.magnitude, normal.z.magnitude)
       case .mit:
         mapped = (normal + Vector3(1, 1, 1)) * S(0.5)
       }

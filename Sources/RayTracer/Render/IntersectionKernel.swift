@@ -9,10 +9,14 @@ public protocol IntersectionKernel: Sendable {
 
   /// The eye's position in the frame the records are stored in.
   static func frameOrigin(eye: Vector3<Double>) -> Vector3<Scalar>
-  static func makeSphere(_ sphere: Sphere<Double>, eye: Vector3<Double>) -> SphereRecord
-  static func makePlane(_ plane: Plane<Double>, eye: Vector3<Double>) -> PlaneRecord
+  static func makeSphere(_ sphere: Sphere<Double>, eye: Vector3<Double>)
+    -> SphereRecord
+  static func makePlane(_ plane: Plane<Double>, eye: Vector3<Double>)
+    -> PlaneRecord
   /// The sphere's centre and radius in the kernel's frame, for the BVH.
-  static func centerAndRadius(_ record: SphereRecord) -> (Vector3<Scalar>, Scalar)
+  static func centerAndRadius(_ record: SphereRecord) -> (
+    Vector3<Scalar>, Scalar
+  )
 
   /// The nearest root in (0, tMax), or nil.
   static func intersect(
@@ -56,7 +60,9 @@ public enum NaiveKernel<Scalar: RayScalar>: IntersectionKernel {
     PlaneRecord(normal: Vector3(plane.normal), offset: Scalar(plane.offset))
   }
 
-  public static func centerAndRadius(_ record: SphereRecord) -> (Vector3<Scalar>, Scalar) {
+  public static func centerAndRadius(_ record: SphereRecord) -> (
+    Vector3<Scalar>, Scalar
+  ) {
     (record.center, record.radius)
   }
 
@@ -147,7 +153,9 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
       isAxisAligned: PlaneIntersection.isAxisAligned(normal) && tail == .zero)
   }
 
-  public static func centerAndRadius(_ record: SphereRecord) -> (Vector3<Scalar>, Scalar) {
+  public static func centerAndRadius(_ record: SphereRecord) -> (
+    Vector3<Scalar>, Scalar
+  ) {
     (record.offset, record.radiusSquared.squareRoot())
   }
 

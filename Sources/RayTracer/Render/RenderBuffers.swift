@@ -11,7 +11,8 @@ public struct RenderBuffers<Scalar: RayScalar>: Sendable {
   public var color: [RGB<Scalar>]
 
   public init(
-    width: Int, height: Int, depth: [Scalar] = [], normals: [Vector3<Scalar>] = [],
+    width: Int, height: Int, depth: [Scalar] = [],
+    normals: [Vector3<Scalar>] = [],
     color: [RGB<Scalar>] = []
   ) {
     self.width = width

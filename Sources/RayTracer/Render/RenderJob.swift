@@ -39,7 +39,8 @@ public struct RenderReport: Sendable {
   /// supersampled shading.
   public var rays: Int {
     let perPixel =
-      settings.samples > 1 && settings.outputs.contains(.shaded) ? settings.samples + 1 : 1
+      settings.samples > 1 && settings.outputs.contains(.shaded)
+      ? settings.samples + 1 : 1
     return settings.width * settings.height * perPixel
   }
   public var megaraysPerSecond: Double { Double(rays) / renderSeconds / 1e6 }
@@ -54,7 +55,9 @@ public struct RenderReport: Sendable {
   public var leftOut: [String] {
     var parts: [String] = []
     let outputs = settings.outputs
-    if !outputs.contains(.shaded) { parts.append("shading (lights, materials)") }
+    if !outputs.contains(.shaded) {
+      parts.append("shading (lights, materials)")
+    }
     if !outputs.needsNormals { parts.append("normals") }
     if !outputs.contains(.depth) { parts.append("depth buffer") }
     if texturedMaterials > 0 && texturesRead == 0 {
@@ -88,11 +91,12 @@ public enum RenderJob {
     report.texturedMaterials = scene.materials.count {
       $0.texturePath != nil
     }
-    report.texturesRead = Set(
-      zip(scene.materials, textures).compactMap { material, texture in
-        texture == nil ? nil : material.texturePath
-      }
-    ).count
+    report.texturesRead =
+      Set(
+        zip(scene.materials, textures).compactMap { material, texture in
+          texture == nil ? nil : material.texturePath
+        }
+      ).count
     return report
   }
 
@@ -115,11 +119,14 @@ public enum RenderJob {
     case (.float, .naive):
       return try run(NaiveKernel<Float>.self, scene, textures, output, progress)
     case (.float, .stable):
-      return try run(StableKernel<Float>.self, scene, textures, output, progress)
+      return try run(
+        StableKernel<Float>.self, scene, textures, output, progress)
     case (.double, .naive):
-      return try run(NaiveKernel<Double>.self, scene, textures, output, progress)
+      return try run(
+        NaiveKernel<Double>.self, scene, textures, output, progress)
     case (.double, .stable):
-      return try run(StableKernel<Double>.self, scene, textures, output, progress)
+      return try run(
+        StableKernel<Double>.self, scene, textures, output, progress)
     }
   }
 
@@ -147,7 +154,8 @@ public enum RenderJob {
         ?? (settings.samples == 1
           ? .max : BoundingVolumeHierarchy<Kernel.Scalar>.defaultThreshold),
       projectionThreshold: settings.samples == 1
-        ? settings.projectionThreshold ?? CompiledScene<Kernel>.projectionThreshold : .max)
+        ? settings.projectionThreshold
+          ?? CompiledScene<Kernel>.projectionThreshold : .max)
     let compileSeconds = clock.lap()
     let rendered = repeatedly(
       settings.repeats, progress: progress, clock: &clock
@@ -266,7 +274,8 @@ public enum RenderJob {
     let (width, height) = (buffers.width, buffers.height)
     switch kind {
     case .depth:
-      return RawImage(width: width, height: height, channels: 1, values: buffers.depth)
+      return RawImage(
+        width: width, height: height, channels: 1, values: buffers.depth)
     case .normals:
       return RawImage(
         width: width, height: height, channels: 3,
@@ -278,12 +287,17 @@ public enum RenderJob {
     }
   }
 
-  private static func encode(_ image: Image8, _ format: ImageFormat, _ png: PNGOptions) -> [UInt8] {
-    format == .png ? PNGEncoder.encode(image, options: png) : PPMEncoder.encode(image)
+  private static func encode(
+    _ image: Image8, _ format: ImageFormat, _ png: PNGOptions
+  ) -> [UInt8] {
+    format == .png
+      ? PNGEncoder.encode(image, options: png) : PPMEncoder.encode(image)
   }
 
   /// PFM is 32-bit by definition; NPY keeps the render's precision.
-  private static func encodeRaw<S: RayScalar>(_ image: RawImage<S>, _ format: ImageFormat) -> [UInt8] {
+  private static func encodeRaw<S: RayScalar>(
+    _ image: RawImage<S>, _ format: ImageFormat
+  ) -> [UInt8] {
     if format == .pfm {
       return PFMEncoder.encode(
         RawImage(

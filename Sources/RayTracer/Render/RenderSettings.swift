@@ -13,8 +13,11 @@ public struct RenderOutputs: OptionSet, Hashable, Sendable {
   public var needsNormals: Bool { !isDisjoint(with: [.normals, .shaded]) }
 
   public var names: [String] {
-    [(RenderOutputs.depth, "depth"), (.normals, "normals"), (.shaded, "shaded")]
-      .filter { contains($0.0) }.map(\.1)
+    [
+      (RenderOutputs.depth, "depth"), (.normals, "normals"),
+      (.shaded, "shaded"),
+    ]
+    .filter { contains($0.0) }.map(\.1)
   }
 }
 
@@ -87,7 +90,8 @@ public enum PixelFilter: String, CaseIterable, Sendable {
   public func offset(_ u: Double) -> Double {
     switch self {
     case .box: return u - 0.5
-    case .tent: return u < 0.5 ? (2 * u).squareRoot() - 1 : 1 - (2 - 2 * u).squareRoot()
+    case .tent:
+      return u < 0.5 ? (2 * u).squareRoot() - 1 : 1 - (2 - 2 * u).squareRoot()
     }
   }
 }

@@ -31,7 +31,8 @@ extension Renderer {
     if wantsNormals { targets.normals[pixel] = normal }
     if shadeCentre {
       targets.color[pixel] = shade(
-        hit, ray: ray, normal: normal, scene: scene, attenuate: settings.style == .mit)
+        hit, ray: ray, normal: normal, scene: scene,
+        attenuate: settings.style == .mit)
     }
   }
 
@@ -49,7 +50,8 @@ extension Renderer {
 
   /// The pixel's colour: the mean of its samples' (`PixelSamples`).
   static func supersampledColor<Kernel: IntersectionKernel, R: RayScalar>(
-    column: Int, row: Int, scene: CompiledScene<Kernel>, camera: PerspectiveCamera<R>,
+    column: Int, row: Int, scene: CompiledScene<Kernel>,
+    camera: PerspectiveCamera<R>,
     settings: RenderSettings
   ) -> RGB<Kernel.Scalar> {
     typealias S = Kernel.Scalar
@@ -57,7 +59,8 @@ extension Renderer {
     var samples = PixelSamples(
       column: column, row: row, camera: camera, settings: settings)
     while let sample = samples.next() {
-      let ray = CameraRay(origin: scene.rayOrigin, direction: Vector3<S>(sample))
+      let ray = CameraRay(
+        origin: scene.rayOrigin, direction: Vector3<S>(sample))
       guard let hit = scene.nearest(ray) else {
         sum += scene.background
         continue

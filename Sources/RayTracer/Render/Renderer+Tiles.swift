@@ -8,8 +8,10 @@ extension Renderer {
   /// Renders a batch of rows, tile by tile when the scene culls spheres per
   /// tile: each tile tests only the spheres its rays may hit.
   static func renderRows<Kernel: IntersectionKernel, R: RayScalar>(
-    _ rows: Range<Int>, _ columns: UnsafeBufferPointer<R>, _ scene: CompiledScene<Kernel>,
-    _ camera: PerspectiveCamera<R>, _ settings: RenderSettings, _ tiles: ScreenTiles<Kernel>?,
+    _ rows: Range<Int>, _ columns: UnsafeBufferPointer<R>,
+    _ scene: CompiledScene<Kernel>,
+    _ camera: PerspectiveCamera<R>, _ settings: RenderSettings,
+    _ tiles: ScreenTiles<Kernel>?,
     _ targets: Targets<Kernel.Scalar>
   ) {
     if let tiles {
@@ -35,22 +37,29 @@ extension Renderer {
       return
     }
     let aspect = R(settings.height) / R(settings.width)
-    let top: R = settings.style.screenY(row: rows.lowerBound, height: settings.height)
-    let bottom: R = settings.style.screenY(row: rows.upperBound - 1, height: settings.height)
-    withUnsafeTemporaryAllocation(of: Int32.self, capacity: scene.sphereCount) { candidates in
+    let top: R = settings.style.screenY(
+      row: rows.lowerBound, height: settings.height)
+    let bottom: R = settings.style.screenY(
+      row: rows.upperBound - 1, height: settings.height)
+    withUnsafeTemporaryAllocation(of: Int32.self, capacity: scene.sphereCount) {
+      candidates in
       for start in stride(from: 0, to: settings.width, by: tileWidth) {
         let tile = start..<min(start + tileWidth, settings.width)
-        let (left, right) = (columns[tile.lowerBound], columns[tile.upperBound - 1])
+        let (left, right) = (
+          columns[tile.lowerBound], columns[tile.upperBound - 1]
+        )
         func corner(_ x: R, _ y: R) -> Vector3<Double> {
           Vector3<Double>(camera.rayDirection(x: x, y: y, aspect: aspect))
         }
         let corners = (
-          corner(left, top), corner(right, top), corner(right, bottom), corner(left, bottom)
+          corner(left, top), corner(right, top), corner(right, bottom),
+          corner(left, bottom)
         )
         let count = scene.cullSpheres(corners: corners, into: candidates)
         let chosen = UnsafeBufferPointer(rebasing: candidates[0..<count])
         for row in rows {
-          renderRow(row, tile, chosen, columns, scene, camera, settings, targets)
+          renderRow(
+            row, tile, chosen, columns, scene, camera, settings, targets)
         }
       }
     }
@@ -74,10 +83,12 @@ extension Renderer {
     // next one's instead of waiting on each behind a traversal. At most
     // 16 vectors: 768 bytes in Float80, on the stack.
     precondition(tile.count <= tileWidth)
-    withUnsafeTemporaryAllocation(of: Vector3<S>.self, capacity: tileWidth) { directions in
+    withUnsafeTemporaryAllocation(of: Vector3<S>.self, capacity: tileWidth) {
+      directions in
       for column in tile {
         (directions.baseAddress! + (column - tile.lowerBound)).initialize(
-          to: Vector3<S>(camera.rayDirection(x: columns[column], rowBase: rowBase)))
+          to: Vector3<S>(
+            camera.rayDirection(x: columns[column], rowBase: rowBase)))
       }
       for column in tile {
         let direction = directions[column - tile.lowerBound]
@@ -85,10 +96,13 @@ extension Renderer {
         let pixel = row * width + column
         if wantsColor && settings.samples > 1 {
           targets.color[pixel] = supersampledColor(
-            column: column, row: row, scene: scene, camera: camera, settings: settings)
+            column: column, row: row, scene: scene, camera: camera,
+            settings: settings)
         }
         let hit = scene.nearest(ray, candidates: candidates)
-        store(hit, ray: ray, pixel: pixel, scene: scene, settings: settings, targets: targets)
+        store(
+          hit, ray: ray, pixel: pixel, scene: scene, settings: settings,
+          targets: targets)
       }
     }
   }
@@ -97,27 +111,37 @@ extension Renderer {
   /// rays of its box's pixels, in scene order with the flat loop's strict
   /// `<`, then each pixel's search continued past the spheres.
   static func renderProjectedTile<Kernel: IntersectionKernel, R: RayScalar>(
-    _ entries: ArraySlice<ScreenTiles<Kernel>.Entry>, columns tileColumns: Range<Int>, rows: Range<Int>,
+    _ entries: ArraySlice<ScreenTiles<Kernel>.Entry>,
+    columns tileColumns: Range<Int>, rows: Range<Int>,
     _ columns: UnsafeBufferPointer<R>, _ scene: CompiledScene<Kernel>,
     _ camera: PerspectiveCamera<R>, _ settings: RenderSettings,
     _ targets: Targets<Kernel.Scalar>
   ) {
     typealias S = Kernel.Scalar
     let aspect = R(settings.height) / R(settings.width)
-    let capacity = ScreenTiles<Kernel>.tileWidth * ScreenTiles<Kernel>.tileHeight
-    precondition(tileColumns.count <= ScreenTiles<Kernel>.tileWidth && rows.count <= ScreenTiles<Kernel>.tileHeight)
-    withUnsafeTemporaryAllocation(of: CameraRay<S>.self, capacity: capacity) { rays in
-      withUnsafeTemporaryAllocation(of: S.self, capacity: capacity) { nearestT in
-        withUnsafeTemporaryAllocation(of: Int32.self, capacity: capacity) { nearestEntry in
+    let capacity =
+      ScreenTiles<Kernel>.tileWidth * ScreenTiles<Kernel>.tileHeight
+    precondition(
+      tileColumns.count <= ScreenTiles<Kernel>.tileWidth
+        && rows.count <= ScreenTiles<Kernel>.tileHeight)
+    withUnsafeTemporaryAllocation(of: CameraRay<S>.self, capacity: capacity) {
+      rays in
+      withUnsafeTemporaryAllocation(of: S.self, capacity: capacity) {
+        nearestT in
+        withUnsafeTemporaryAllocation(of: Int32.self, capacity: capacity) {
+          nearestEntry in
           for row in rows {
             let y: R = settings.style.screenY(row: row, height: settings.height)
             let rowBase = camera.rowBase(y: y, aspect: aspect)
             for column in tileColumns {
-              let slot = (row - rows.lowerBound) * ScreenTiles<Kernel>.tileWidth + column - tileColumns.lowerBound
+              let slot =
+                (row - rows.lowerBound) * ScreenTiles<Kernel>.tileWidth + column
+                - tileColumns.lowerBound
               (rays.baseAddress! + slot).initialize(
                 to: CameraRay(
                   origin: scene.rayOrigin,
-                  direction: Vector3<S>(camera.rayDirection(x: columns[column], rowBase: rowBase))))
+                  direction: Vector3<S>(
+                    camera.rayDirection(x: columns[column], rowBase: rowBase))))
               (nearestT.baseAddress! + slot).initialize(to: .infinity)
               (nearestEntry.baseAddress! + slot).initialize(to: -1)
             }
@@ -131,23 +155,31 @@ extension Renderer {
             for row in Int(entry.firstRow)...Int(entry.lastRow) {
               for column in Int(entry.firstColumn)...Int(entry.lastColumn) {
                 let slot = row * ScreenTiles<Kernel>.tileWidth + column
-                if let t = Kernel.intersect(record, rays[slot], before: nearestT[slot]) {
+                if let t = Kernel.intersect(
+                  record, rays[slot], before: nearestT[slot])
+                {
                   nearestT[slot] = t
-                  nearestEntry[slot] = Int32(truncatingIfNeeded: position - entryBase)
+                  nearestEntry[slot] = Int32(
+                    truncatingIfNeeded: position - entryBase)
                 }
               }
             }
           }
           for row in rows {
             for column in tileColumns {
-              let slot = (row - rows.lowerBound) * ScreenTiles<Kernel>.tileWidth + column - tileColumns.lowerBound
+              let slot =
+                (row - rows.lowerBound) * ScreenTiles<Kernel>.tileWidth + column
+                - tileColumns.lowerBound
               let position = Int(nearestEntry[slot])
               let entry = position >= 0 ? entries[entryBase + position] : nil
               let hit = scene.nearest(
-                rays[slot], beyondSpheres: nearestT[slot], entry.map { .sphere(Int($0.sphere)) })
+                rays[slot], beyondSpheres: nearestT[slot],
+                entry.map { .sphere(Int($0.sphere)) })
               store(
-                hit, ray: rays[slot], pixel: row * settings.width + column, scene: scene,
-                settings: settings, targets: targets, sphereRecord: entry?.record)
+                hit, ray: rays[slot], pixel: row * settings.width + column,
+                scene: scene,
+                settings: settings, targets: targets,
+                sphereRecord: entry?.record)
             }
           }
         }

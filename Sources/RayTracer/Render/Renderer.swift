@@ -44,46 +44,61 @@ public enum Renderer {
     var scene = scene
     var tiles: ScreenTiles<Kernel>?
     if scene.projectsSpheres && settings.samples == 1 {
-      let camera = PerspectiveCamera<Kernel.Scalar>(scene.camera).styled(settings.style)
-      tiles = ScreenTiles(scene, camera: camera, settings: settings, overlapLimit: overlapLimit)
+      let camera = PerspectiveCamera<Kernel.Scalar>(scene.camera).styled(
+        settings.style)
+      tiles = ScreenTiles(
+        scene, camera: camera, settings: settings, overlapLimit: overlapLimit)
     }
     if scene.projectsSpheres && tiles == nil { scene.buildSphereHierarchy() }
     let buffers = render(
-      scene, settings: settings, rays: Kernel.Scalar.self, tiles: tiles, progress: progress)
+      scene, settings: settings, rays: Kernel.Scalar.self, tiles: tiles,
+      progress: progress)
     let search: SphereSearch =
-      tiles != nil ? .screenTiles
-      : scene.usesHierarchy ? .hierarchy
-      : scene.cullsPerTile && settings.samples == 1 ? .culledPerTile : .everySphere
+      tiles != nil
+      ? .screenTiles
+      : scene.usesHierarchy
+        ? .hierarchy
+        : scene.cullsPerTile && settings.samples == 1
+          ? .culledPerTile : .everySphere
     return (buffers, search)
   }
 
   /// Renders with camera rays generated in precision `RayPrecision` and then
   /// converted exactly to the kernel's wider type: the reference path, which
   /// intersects the very rays a Float or Double render traced, in Float80.
-  public static func render<Kernel: IntersectionKernel, RayPrecision: RayScalar>(
+  public static func render<
+    Kernel: IntersectionKernel, RayPrecision: RayScalar
+  >(
     _ scene: CompiledScene<Kernel>, settings: RenderSettings,
     rays: RayPrecision.Type, progress: (@Sendable (Int) -> Void)? = nil
   ) -> RenderBuffers<Kernel.Scalar> {
-    render(scene, settings: settings, rays: rays, tiles: nil, progress: progress)
+    render(
+      scene, settings: settings, rays: rays, tiles: nil, progress: progress)
   }
 
   /// `tiles`, when given, must come from this scene, camera and settings.
-  private static func render<Kernel: IntersectionKernel, RayPrecision: RayScalar>(
+  private static func render<
+    Kernel: IntersectionKernel, RayPrecision: RayScalar
+  >(
     _ scene: CompiledScene<Kernel>, settings: RenderSettings,
-    rays: RayPrecision.Type, tiles: ScreenTiles<Kernel>?, progress: (@Sendable (Int) -> Void)?
+    rays: RayPrecision.Type, tiles: ScreenTiles<Kernel>?,
+    progress: (@Sendable (Int) -> Void)?
   ) -> RenderBuffers<Kernel.Scalar> {
     typealias S = Kernel.Scalar
     let width = settings.width
     let height = settings.height
     let count = width * height
     let outputs = settings.outputs
-    let camera = PerspectiveCamera<RayPrecision>(scene.camera).styled(settings.style)
+    let camera = PerspectiveCamera<RayPrecision>(scene.camera).styled(
+      settings.style)
     // Left uninitialised: every pixel of every requested buffer is written
     // exactly once below, so zeroing them first would only cost a pass
     // over memory on one thread.
     var normals: [Vector3<S>] = []
     var color: [RGB<S>] = []
-    let depth = uninitializedArray(of: S.self, count: outputs.contains(.depth) ? count : 0) {
+    let depth = uninitializedArray(
+      of: S.self, count: outputs.contains(.depth) ? count : 0
+    ) {
       depth in
       normals = uninitializedArray(
         of: Vector3<S>.self, count: outputs.contains(.normals) ? count : 0
@@ -102,19 +117,22 @@ public enum Renderer {
             forEachRowBatch(
               rows: height, threads: settings.threads, progress: progress
             ) { rows in
-              renderRows(rows, columns.value, scene, camera, settings, tiles, targets)
+              renderRows(
+                rows, columns.value, scene, camera, settings, tiles, targets)
             }
           }
         }
       }
     }
     return RenderBuffers(
-      width: width, height: height, depth: depth, normals: normals, color: color)
+      width: width, height: height, depth: depth, normals: normals, color: color
+    )
   }
 
   /// An array of `count` elements that `initialize` must write, every one.
   static func uninitializedArray<T>(
-    of _: T.Type, count: Int, _ initialize: (UnsafeMutableBufferPointer<T>) -> Void
+    of _: T.Type, count: Int,
+    _ initialize: (UnsafeMutableBufferPointer<T>) -> Void
   ) -> [T] {
     Array(unsafeUninitializedCapacity: count) { buffer, initializedCount in
       Memory.adviseHugePages(UnsafeMutableRawBufferPointer(buffer))

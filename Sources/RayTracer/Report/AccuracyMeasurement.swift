@@ -73,12 +73,15 @@ public struct AccuracyMeasurement: Sendable {
         for dy in -1...1 {
           for dx in -1...1 {
             let neighbour = reference.depth[pixel + dy * width + dx]
-            guard neighbour.isFinite, (neighbour - centre).magnitude <= centre / 10 else {
+            guard neighbour.isFinite,
+              (neighbour - centre).magnitude <= centre / 10
+            else {
               continue pixels
             }
             if hasNormals {
               let a = Vector3<Double>(reference.normals[pixel])
-              let b = Vector3<Double>(reference.normals[pixel + dy * width + dx])
+              let b = Vector3<Double>(
+                reference.normals[pixel + dy * width + dx])
               // cos 10° = 0.985
               guard a.dot(b) >= 0.985 else { continue pixels }
             }
@@ -92,7 +95,8 @@ public struct AccuracyMeasurement: Sendable {
     comparedHits = errors.count
     maxRelativeError = errors.last ?? 0
     p99RelativeError =
-      errors.isEmpty ? 0 : errors[Swift.min(errors.count - 1, (errors.count * 99) / 100)]
+      errors.isEmpty
+      ? 0 : errors[Swift.min(errors.count - 1, (errors.count * 99) / 100)]
     self.disagreements = disagreements
     maxNormalErrorDegrees = maxAngle
     self.perPixel = perPixel
@@ -121,16 +125,20 @@ public enum AccuracyRender {
       method: method, precision: precision, threads: threads)
     switch (precision, method) {
     case (.float, .naive):
-      let (buffers, time) = timed(NaiveKernel<Float>.self, scene, settings, runs)
+      let (buffers, time) = timed(
+        NaiveKernel<Float>.self, scene, settings, runs)
       return (.float(buffers), time)
     case (.float, .stable):
-      let (buffers, time) = timed(StableKernel<Float>.self, scene, settings, runs)
+      let (buffers, time) = timed(
+        StableKernel<Float>.self, scene, settings, runs)
       return (.float(buffers), time)
     case (.double, .naive):
-      let (buffers, time) = timed(NaiveKernel<Double>.self, scene, settings, runs)
+      let (buffers, time) = timed(
+        NaiveKernel<Double>.self, scene, settings, runs)
       return (.double(buffers), time)
     case (.double, .stable):
-      let (buffers, time) = timed(StableKernel<Double>.self, scene, settings, runs)
+      let (buffers, time) = timed(
+        StableKernel<Double>.self, scene, settings, runs)
       return (.double(buffers), time)
     }
   }
@@ -161,8 +169,10 @@ public enum AccuracyRender {
       method: .stable, precision: precision, threads: threads)
     let compiled = CompiledScene<StableKernel<ReferenceScalar>>(scene)
     switch precision {
-    case .float: return Renderer.render(compiled, settings: settings, rays: Float.self)
-    case .double: return Renderer.render(compiled, settings: settings, rays: Double.self)
+    case .float:
+      return Renderer.render(compiled, settings: settings, rays: Float.self)
+    case .double:
+      return Renderer.render(compiled, settings: settings, rays: Double.self)
     }
   }
 }
@@ -196,7 +206,8 @@ public func median(_ values: [Double]) -> Double {
   guard !values.isEmpty else { return .nan }
   let sorted = values.sorted()
   let middle = sorted.count / 2
-  return sorted.count % 2 == 1 ? sorted[middle] : (sorted[middle - 1] + sorted[middle]) / 2
+  return sorted.count % 2 == 1
+    ? sorted[middle] : (sorted[middle - 1] + sorted[middle]) / 2
 }
 
 /// How far a supersampled shaded image is from a reference with many more
@@ -217,14 +228,16 @@ public struct AntialiasingMeasurement: Sendable {
       squares += difference.lengthSquared
       largest = Swift.max(largest, difference.maxMagnitude)
     }
-    rootMeanSquare = (squares / Double(Swift.max(3 * image.count, 1))).squareRoot()
+    rootMeanSquare = (squares / Double(Swift.max(3 * image.count, 1)))
+      .squareRoot()
     maxLevels = largest * 255
   }
 
   /// The shaded image of `scene` with `samples` rays per pixel (stable,
   /// Double) and the median time of `runs` renders after a warm-up.
   public static func render(
-    _ scene: Scene, width: Int, height: Int, samples: Int, filter: PixelFilter = .box,
+    _ scene: Scene, width: Int, height: Int, samples: Int,
+    filter: PixelFilter = .box,
     threads: Int, runs: Int
   ) -> (color: [RGB<Double>], medianSeconds: Double) {
     var settings = RenderSettings(

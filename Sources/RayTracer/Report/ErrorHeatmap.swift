@@ -45,9 +45,13 @@ public enum ErrorHeatmap {
     }
     for decade in 0...decades {
       let column = Swift.min(width - 1, decade * (width - 1) / decades)
-      for row in (height + 12)..<(height + 15) { put(column, row, (255, 255, 255)) }
+      for row in (height + 12)..<(height + 15) {
+        put(column, row, (255, 255, 255))
+      }
       let left = Swift.min(Swift.max(column - 1, 0), width - 3)
-      drawDigit(decade, atColumn: left, row: height + 16) { put($0, $1, (255, 255, 255)) }
+      drawDigit(decade, atColumn: left, row: height + 16) {
+        put($0, $1, (255, 255, 255))
+      }
     }
     return Image8(width: width, height: totalHeight, bytes: bytes)
   }
@@ -60,12 +64,16 @@ public enum ErrorHeatmap {
       (0.95, 0.85, 0.1), (0.9, 0.15, 0.1), (1, 1, 1),
     ]
     let position = ulps > 1 ? Double.log(ulps) / Double.log(10) : 0
-    let scaled = Swift.min(Swift.max(position / Double(decades), 0), 1) * Double(stops.count - 1)
+    let scaled =
+      Swift.min(Swift.max(position / Double(decades), 0), 1)
+      * Double(stops.count - 1)
     let index = Swift.min(Int(scaled), stops.count - 2)
     let f = scaled - Double(index)
     let a = stops[index]
     let b = stops[index + 1]
-    func channel(_ x: Double, _ y: Double) -> UInt8 { UInt8((x + (y - x) * f) * 255) }
+    func channel(_ x: Double, _ y: Double) -> UInt8 {
+      UInt8((x + (y - x) * f) * 255)
+    }
     return (channel(a.0, b.0), channel(a.1, b.1), channel(a.2, b.2))
   }
 

@@ -148,13 +148,15 @@ enum DecimalParser {
     var significantDigits = 0
     var exponent = 0
     while cursor < end, let digit = decimalDigit(cursor.pointee) {
-      accumulate(digit, &mantissa, &significantDigits, &exponent, fraction: false)
+      accumulate(
+        digit, &mantissa, &significantDigits, &exponent, fraction: false)
       cursor += 1
     }
     if cursor < end && cursor.pointee == UInt8(ascii: ".") {
       cursor += 1
       while cursor < end, let digit = decimalDigit(cursor.pointee) {
-        accumulate(digit, &mantissa, &significantDigits, &exponent, fraction: true)
+        accumulate(
+          digit, &mantissa, &significantDigits, &exponent, fraction: true)
         cursor += 1
       }
     }

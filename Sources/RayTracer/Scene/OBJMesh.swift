@@ -11,7 +11,8 @@ public struct OBJMesh: Hashable, Sendable {
 
   public init(
     vertices: [Vector3<Double>] = [], normals: [Vector3<Double>] = [],
-    textureCoordinates: [TextureCoordinate<Double>] = [], triangles: [OBJTriangle] = []
+    textureCoordinates: [TextureCoordinate<Double>] = [],
+    triangles: [OBJTriangle] = []
   ) {
     self.vertices = vertices
     self.normals = normals

@@ -236,8 +236,7 @@ struct OBJParser {
   }
 
   /// `vt u [v [w]]`: (u, v), v 0 when it is not given.
-  private mutating func textureCoordinate(_ keyword: Token) throws(SceneError)
-  {
+  private mutating func textureCoordinate(_ keyword: Token) throws(SceneError) {
     guard mesh.textureCoordinates.count < Int(Int32.max) else {
       throw error(
         at: keyword,

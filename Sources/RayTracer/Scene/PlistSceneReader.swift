@@ -1,7 +1,7 @@
 #if canImport(FoundationEssentials)
-import FoundationEssentials
+  import FoundationEssentials
 #else
-import Foundation
+  import Foundation
 #endif
 
 /// Reads the Swift course's property-list scenes into the same model the
@@ -174,7 +174,8 @@ struct PlistSceneBuilder {
     guard shininess >= 0 else {
       throw fail(
         "\(path).shininess",
-        "'shininess' must not be negative, found \(quoted(fields["shininess"]))")
+        "'shininess' must not be negative, found \(quoted(fields["shininess"]))"
+      )
     }
     var texture: String?
     if let name = try string(fields, "texture", path) {
@@ -217,7 +218,8 @@ struct PlistSceneBuilder {
     let material = forced ?? own ?? inherited ?? 0
     switch type {
     case "Sphere":
-      try checkKeys(fields, ["type", "materialIndex", "center", "radius"], path)
+      try checkKeys(
+        fields, ["type", "materialIndex", "center", "radius"], path)
       let center = try required(vector(fields, "center", path), "center", path)
       let radius = try required(number(fields, "radius", path), "radius", path)
       guard radius > 0 else {
@@ -228,14 +230,16 @@ struct PlistSceneBuilder {
       return .sphere(
         Sphere(center: center, radius: radius, materialIndex: material))
     case "Plane":
-      try checkKeys(fields, ["type", "materialIndex", "normal", "offset"], path)
+      try checkKeys(
+        fields, ["type", "materialIndex", "normal", "offset"], path)
       let normal = try required(vector(fields, "normal", path), "normal", path)
       let offset = try required(number(fields, "offset", path), "offset", path)
       guard normal.maxMagnitude > 0 else {
         throw fail("\(path).normal", "'normal' must not be the zero vector")
       }
       // n·P + offset = 0 is the text format's n·P = −offset.
-      let plane = Plane(normal: normal, offset: -offset, materialIndex: material)
+      let plane = Plane(
+        normal: normal, offset: -offset, materialIndex: material)
       guard plane.offset.isFinite else {
         throw fail(
           "\(path).offset",
@@ -282,7 +286,8 @@ struct PlistSceneBuilder {
       for (index, operation) in try array(list, "\(path).transforms")
         .enumerated()
       {
-        matrix = matrix
+        matrix =
+          matrix
           * (try self.operation(operation, "\(path).transforms[\(index)]"))
       }
     }
@@ -327,7 +332,8 @@ struct PlistSceneBuilder {
       Self.operations.contains(name)
     else {
       let word = words.first.map(String.init) ?? ""
-      let hint = nearest(to: word, in: Self.operations)
+      let hint =
+        nearest(to: word, in: Self.operations)
         .map { "; did you mean '\($0)'?" } ?? ""
       throw fail(
         path,
@@ -447,7 +453,8 @@ struct PlistSceneBuilder {
           + (materials.isEmpty
             ? "the scene has no materials (only the default, 0)"
             : "the scene has \(materials.count) material"
-              + "\(materials.count == 1 ? "" : "s") (0 to \(materials.count - 1))"))
+              + "\(materials.count == 1 ? "" : "s") (0 to \(materials.count - 1))")
+      )
     }
     return Int(index)
   }
@@ -477,7 +484,8 @@ struct PlistSceneBuilder {
       return choices[0]
     }
     guard choices.contains(type) else {
-      let hint = nearest(to: type, in: choices)
+      let hint =
+        nearest(to: type, in: choices)
         .map { "; did you mean '\($0)'?" } ?? ""
       throw fail(
         "\(path).type",
@@ -491,10 +499,12 @@ struct PlistSceneBuilder {
     _ fields: [String: PropertyList], _ allowed: [String], _ path: String
   ) throws(SceneError) {
     for key in fields.keys.sorted() where !allowed.contains(key) {
-      let hint = nearest(to: key, in: allowed)
+      let hint =
+        nearest(to: key, in: allowed)
         .map { "; did you mean '\($0)'?" } ?? ""
       throw fail(
-        path.isEmpty ? SceneParser.escaped(key) : "\(path).\(SceneParser.escaped(key))",
+        path.isEmpty
+          ? SceneParser.escaped(key) : "\(path).\(SceneParser.escaped(key))",
         "unknown key; expected "
           + allowed.joined(separator: ", ") + hint)
     }
@@ -591,7 +601,8 @@ struct PlistSceneBuilder {
     }
     guard values.count == count, words.count == count else {
       let noun = count == 1 ? "1 number" : "\(count) numbers"
-      let found = words.count == values.count || values.isEmpty && words.isEmpty
+      let found =
+        words.count == values.count || values.isEmpty && words.isEmpty
         ? "" : " (finite, decimal)"
       throw fail(
         path, "\(what) \(noun)\(found), found \(quoted(.string(text)))")

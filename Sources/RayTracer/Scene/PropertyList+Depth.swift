@@ -45,7 +45,8 @@ extension PropertyList {
         {
           var end = nameStart
           while end < count && bytes[end] != UInt8(ascii: ">") { end += 1 }
-          let selfClosing = end > 0 && end < count
+          let selfClosing =
+            end > 0 && end < count
             && bytes[end - 1] == UInt8(ascii: "/")
           if closing {
             depth -= 1

@@ -32,7 +32,8 @@ final class SceneBytes: @unchecked Sendable {
   /// The file at `path`; errors, and the files refused, are `readFile`'s.
   static func contentsOf(_ path: String) throws(FileReadError) -> SceneBytes {
     let (descriptor, size) = try openRegularFile(path)
-    if size >= splitThreshold, let bytes = readInHalves(descriptor, size: size) {
+    if size >= splitThreshold, let bytes = readInHalves(descriptor, size: size)
+    {
       close(descriptor)
       return bytes
     }
@@ -43,7 +44,9 @@ final class SceneBytes: @unchecked Sendable {
   /// not have exactly that many (it changed since its size was taken) or
   /// a read failed: the caller then reads it the ordinary way, which
   /// reports the error or follows the file's new length.
-  private static func readInHalves(_ descriptor: Int32, size: Int) -> SceneBytes? {
+  private static func readInHalves(_ descriptor: Int32, size: Int)
+    -> SceneBytes?
+  {
     let buffer = UnsafeMutableBufferPointer<UInt8>.allocate(capacity: size)
     Memory.adviseHugePages(UnsafeMutableRawBufferPointer(buffer))
     let complete = UnsafeMutableBufferPointer<Bool>.allocate(capacity: 2)
@@ -54,7 +57,8 @@ final class SceneBytes: @unchecked Sendable {
       var offset = range.lowerBound
       while offset < range.upperBound {
         let count = pread(
-          descriptor, buffer.baseAddress! + offset, range.upperBound - offset, off_t(offset))
+          descriptor, buffer.baseAddress! + offset, range.upperBound - offset,
+          off_t(offset))
         if count < 0 && errno == EINTR { continue }
         guard count > 0 else { break }
         offset += count
@@ -62,7 +66,9 @@ final class SceneBytes: @unchecked Sendable {
       complete[part] = offset == range.upperBound
     }
     var probe: UInt8 = 0
-    guard complete[0] && complete[1], pread(descriptor, &probe, 1, off_t(size)) == 0 else {
+    guard complete[0] && complete[1],
+      pread(descriptor, &probe, 1, off_t(size)) == 0
+    else {
       buffer.deallocate()
       return nil
     }

@@ -22,7 +22,9 @@ public struct SceneError: Error, Equatable, CustomStringConvertible, Sendable {
     if line > 0 && column > 0 {
       return "\(SceneParser.escaped(file)):\(line):\(column): error: \(message)"
     }
-    if line > 0 { return "\(SceneParser.escaped(file)):\(line): error: \(message)" }
+    if line > 0 {
+      return "\(SceneParser.escaped(file)):\(line): error: \(message)"
+    }
     return "\(SceneParser.escaped(file)): error: \(message)"
   }
 }

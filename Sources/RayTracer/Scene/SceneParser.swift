@@ -35,7 +35,8 @@ public struct SceneParser {
   /// Blocks of the course's later assignments: named in the error, so a user
   /// knows the scene is valid but beyond this renderer.
   static let unsupportedBlocks: Set<String> = [
-    "OrthographicCamera", "texture", "bump", "CheckerBoard", "Noise", "Marble", "Wood",
+    "OrthographicCamera", "texture", "bump", "CheckerBoard", "Noise", "Marble",
+    "Wood",
     "PerlinNoise", "Checkerboard", "Box", "Cylinder", "Cone",
   ]
 
@@ -67,7 +68,8 @@ public struct SceneParser {
   /// `SceneTokenizer.plainSphere` with the token by token one.
   var readsPlainSpheres = true
   private var concurrentFrom = (
-    groupSize: SceneParser.concurrentGroupSize, bytes: SceneParser.concurrentBytes
+    groupSize: SceneParser.concurrentGroupSize,
+    bytes: SceneParser.concurrentBytes
   )
 
   /// Parses `text`; `file` names it in messages.
@@ -82,7 +84,8 @@ public struct SceneParser {
   static func parse(
     bytes: [UInt8], file: String, options: SceneOptions = .init(style: .course)
   ) throws(SceneError) -> Scene {
-    var parser = SceneParser(bytes: SceneBytes(bytes), file: file, options: options)
+    var parser = SceneParser(
+      bytes: SceneBytes(bytes), file: file, options: options)
     return try parser.parseScene()
   }
 
@@ -154,7 +157,8 @@ public struct SceneParser {
           throw error(
             at: check.token,
             "MaterialIndex \(check.index) is out of range: the scene has "
-              + "\(materialList.isEmpty ? "no materials (only the default, 0)" : "\(materialList.count) material\(materialList.count == 1 ? "" : "s") (0 to \(materialList.count - 1))")")
+              + "\(materialList.isEmpty ? "no materials (only the default, 0)" : "\(materialList.count) material\(materialList.count == 1 ? "" : "s") (0 to \(materialList.count - 1))")"
+          )
         }
         for mesh in meshesWithoutTextureCoordinates
         where materialList.indices.contains(mesh.material)
@@ -204,7 +208,9 @@ public struct SceneParser {
     }
   }
 
-  private func refuseRepeat(_ seen: Bool, _ token: SceneToken) throws(SceneError) {
+  private func refuseRepeat(_ seen: Bool, _ token: SceneToken)
+    throws(SceneError)
+  {
     if seen {
       throw error(at: token, "a second '\(text(token))' block; a scene has one")
     }
@@ -255,7 +261,8 @@ public struct SceneParser {
         center: center, direction: direction.0, up: up.0, angle: angle.0)
     else {
       throw error(
-        at: up.1, "the camera's up vector must not be zero or parallel to its direction")
+        at: up.1,
+        "the camera's up vector must not be zero or parallel to its direction")
     }
     return camera
   }
@@ -267,20 +274,25 @@ public struct SceneParser {
     while true {
       let token = try next()
       if token.kind == .close {
-        try checkCount(lights.count, declared, "Lights", "numLights", "light", token)
+        try checkCount(
+          lights.count, declared, "Lights", "numLights", "light", token)
         return lights
       }
-      guard token.kind == .word else { throw unexpectedEnd(token, in: "Lights") }
+      guard token.kind == .word else {
+        throw unexpectedEnd(token, in: "Lights")
+      }
       let name = text(token)
       if name == "PointLight" || name == "DirectionalLight" {
         if lights.count == declared.value {
           throw tooMany(declared, "Lights", "numLights", "light", token)
         }
         lights.append(
-          name == "PointLight" ? try parsePointLight() : try parseDirectionalLight())
+          name == "PointLight"
+            ? try parsePointLight() : try parseDirectionalLight())
       } else {
         throw unexpected(
-          token, expected: "a light", choices: ["PointLight", "DirectionalLight"])
+          token, expected: "a light",
+          choices: ["PointLight", "DirectionalLight"])
       }
     }
   }
@@ -306,7 +318,9 @@ public struct SceneParser {
     return .point(position: position, color: color, falloff: falloff)
   }
 
-  private mutating func parseDirectionalLight() throws(SceneError) -> Light<Double> {
+  private mutating func parseDirectionalLight() throws(SceneError) -> Light<
+    Double
+  > {
     var direction: Vector3<Double>?
     var color: RGB<Double>?
     let close = try parseFields(
@@ -319,7 +333,8 @@ public struct SceneParser {
     }
     guard let direction, let color else {
       throw missing(
-        "DirectionalLight", [("direction", direction != nil), ("color", color != nil)],
+        "DirectionalLight",
+        [("direction", direction != nil), ("color", color != nil)],
         close)
     }
     return .directional(direction: direction.normalized(), color: color)
@@ -342,14 +357,17 @@ public struct SceneParser {
         // (misses show the background colour).
         let path = try parser.next()
         guard path.kind == .word else {
-          throw parser.error(at: path, "expected the cube map's path after 'cubeMap'")
+          throw parser.error(
+            at: path, "expected the cube map's path after 'cubeMap'")
         }
       }
     }
     return (color, ambient)
   }
 
-  private mutating func parseMaterials() throws(SceneError) -> [Material<Double>] {
+  private mutating func parseMaterials() throws(SceneError) -> [Material<
+    Double
+  >] {
     try expect(.open, "'{' after Materials")
     let declared = try count("numMaterials", in: "Materials")
     var materials: [Material<Double>] = []
@@ -357,10 +375,13 @@ public struct SceneParser {
       let token = try next()
       if token.kind == .close {
         try checkCount(
-          materials.count, declared, "Materials", "numMaterials", "material", token)
+          materials.count, declared, "Materials", "numMaterials", "material",
+          token)
         return materials
       }
-      guard token.kind == .word else { throw unexpectedEnd(token, in: "Materials") }
+      guard token.kind == .word else {
+        throw unexpectedEnd(token, in: "Materials")
+      }
       let name = text(token)
       guard name == "Material" || name == "PhongMaterial" else {
         throw unexpected(
@@ -373,7 +394,9 @@ public struct SceneParser {
     }
   }
 
-  private mutating func parseMaterial(_ name: String) throws(SceneError) -> Material<Double> {
+  private mutating func parseMaterial(_ name: String) throws(SceneError)
+    -> Material<Double>
+  {
     var diffuse: RGB<Double>?
     var specular: RGB<Double>?
     var shininess: Double?
@@ -403,7 +426,8 @@ public struct SceneParser {
   ) throws(SceneError) -> Group<Double> {
     try expect(.open, "'{' after Group")
     let declared = try count("numObjects", in: "Group")
-    var state = GroupState(declared: declared, depth: depth, material: inherited)
+    var state = GroupState(
+      declared: declared, depth: depth, material: inherited)
     let reserved = min(declared.value, objectBudget - reservedObjects)
     reservedObjects += reserved
     state.objects.reserveCapacityOnHugePages(reserved)
@@ -415,7 +439,8 @@ public struct SceneParser {
       case .spliced: first = nil
       }
     }
-    guard case .closed(let group) = try parseObjects(&state, first: first) else {
+    guard case .closed(let group) = try parseObjects(&state, first: first)
+    else {
       preconditionFailure("a group read without a limit ends at its '}'")
     }
     return group
@@ -479,9 +504,11 @@ public struct SceneParser {
         state.material = value
         continue
       }
-      guard Self.objectKinds.contains(where: { tokenizer.matches(token, $0) }) else {
+      guard Self.objectKinds.contains(where: { tokenizer.matches(token, $0) })
+      else {
         throw unexpected(
-          token, expected: "an object", choices: Self.objectKinds.map { "\($0)" } + ["MaterialIndex"])
+          token, expected: "an object",
+          choices: Self.objectKinds.map { "\($0)" } + ["MaterialIndex"])
       }
       if state.objects.count == state.declared.value {
         throw tooMany(state.declared, "Group", "numObjects", "object", token)
@@ -510,7 +537,9 @@ public struct SceneParser {
       sysconf(Int32(_SC_NPROCESSORS_ONLN)) > 1
     else { return nil }
     var index = start + (bytes.count - start) / 2
-    while index < bytes.count && bytes[index] != UInt8(ascii: "\n") { index += 1 }
+    while index < bytes.count && bytes[index] != UInt8(ascii: "\n") {
+      index += 1
+    }
     return index + 1 < bytes.count ? index + 1 : nil
   }
 
@@ -613,7 +642,8 @@ public struct SceneParser {
       spheres.reserveCapacityOnHugePages(
         Swift.min(
           capacity,
-          (parser.tokenizer.bytes.count - stop.index) / SceneParser.minimumObjectLength))
+          (parser.tokenizer.bytes.count - stop.index)
+            / SceneParser.minimumObjectLength))
       // A placeholder no `MaterialIndex` can give.
       parser.currentMaterial = -1
       while spheres.count < capacity {
@@ -623,13 +653,17 @@ public struct SceneParser {
           token.end - token.start <= SceneParser.maximumWordLength
         else { return }
         if parser.tokenizer.matches(token, "Sphere") {
-          guard let sphere = try? parser.parseSphere(material: parser.currentMaterial)
+          guard
+            let sphere = try? parser.parseSphere(
+              material: parser.currentMaterial)
           else { return }
           spheres.append(sphere)
           if !sawMaterialIndex { inheritingCount += 1 }
         } else if parser.tokenizer.matches(token, "MaterialIndex") {
           let valueToken = parser.peekStart()
-          guard let value = try? parser.wholeNumber("MaterialIndex") else { return }
+          guard let value = try? parser.wholeNumber("MaterialIndex") else {
+            return
+          }
           parser.pendingMaterialChecks.append((value, valueToken))
           parser.currentMaterial = value
           sawMaterialIndex = true
@@ -670,7 +704,8 @@ public struct SceneParser {
     if tokenizer.matches(token, "Group") {
       return .group(try parseGroup(depth: depth + 1, material: material))
     }
-    return .transform(try parseTransform(token, depth: depth + 1, material: material))
+    return .transform(
+      try parseTransform(token, depth: depth + 1, material: material))
   }
 
   /// `Transform { operations… object }`. Translate, Scale, UniformScale and
@@ -696,10 +731,13 @@ public struct SceneParser {
         // Overflowing operations (`Translate 1e308 0 0` twice) leave
         // infinities, for which "no inverse" would be the wrong reason.
         guard matrix.rowMajorEntries.allSatisfy(\.isFinite) else {
-          throw error(at: start, "the Transform's matrix overflows: its entries are not all finite")
+          throw error(
+            at: start,
+            "the Transform's matrix overflows: its entries are not all finite")
         }
         guard let transform = Transform(matrix: matrix, object: object) else {
-          throw error(at: start, "the Transform's matrix has no inverse (a scale of 0?)")
+          throw error(
+            at: start, "the Transform's matrix has no inverse (a scale of 0?)")
         }
         if openTransforms == 1 {
           try checkMovedGeometry(transform, start)
@@ -712,13 +750,16 @@ public struct SceneParser {
       }
       if Self.objectKinds.contains(where: { tokenizer.matches(token, $0) }) {
         guard object == nil else {
-          throw error(at: token, "a Transform holds one object; group several in a Group")
+          throw error(
+            at: token, "a Transform holds one object; group several in a Group")
         }
         object = try parseObject(token, depth: depth, material: material)
         continue
       }
       guard object == nil else {
-        throw error(at: token, "transform operations come before the object, found '\(text(token))'")
+        throw error(
+          at: token,
+          "transform operations come before the object, found '\(text(token))'")
       }
       switch text(token) {
       case "Translate": matrix = matrix * .translation(try vector())
@@ -732,7 +773,9 @@ public struct SceneParser {
       case "UniformScale":
         let at = peekStart()
         let factor = try number()
-        guard factor != 0 else { throw error(at: at, "'UniformScale' must not be 0") }
+        guard factor != 0 else {
+          throw error(at: at, "'UniformScale' must not be 0")
+        }
         matrix = matrix * .uniformScale(factor)
       case "XRotate": matrix = matrix * .rotationX(degrees: try number())
       case "YRotate": matrix = matrix * .rotationY(degrees: try number())
@@ -752,7 +795,8 @@ public struct SceneParser {
         throw unexpected(
           token, expected: "a transform operation or an object",
           choices: [
-            "Translate", "Scale", "UniformScale", "XRotate", "YRotate", "ZRotate",
+            "Translate", "Scale", "UniformScale", "XRotate", "YRotate",
+            "ZRotate",
             "Rotate", "Matrix4f",
           ] + Self.objectKinds.map { "\($0)" })
       }
@@ -797,7 +841,9 @@ public struct SceneParser {
       }
   }
 
-  private mutating func parseTriangle(material: Int) throws(SceneError) -> Triangle<Double> {
+  private mutating func parseTriangle(material: Int) throws(SceneError)
+    -> Triangle<Double>
+  {
     var vertices: [Vector3<Double>?] = [nil, nil, nil]
     let close = try parseFields(
       "Triangle", ["vertex0", "vertex1", "vertex2"]
@@ -805,18 +851,23 @@ public struct SceneParser {
       let index = field == "vertex0" ? 0 : field == "vertex1" ? 1 : 2
       vertices[index] = try parser.vector()
     }
-    guard let v0 = vertices[0], let v1 = vertices[1], let v2 = vertices[2] else {
+    guard let v0 = vertices[0], let v1 = vertices[1], let v2 = vertices[2]
+    else {
       throw missing(
         "Triangle",
-        [("vertex0", vertices[0] != nil), ("vertex1", vertices[1] != nil),
-         ("vertex2", vertices[2] != nil)], close)
+        [
+          ("vertex0", vertices[0] != nil), ("vertex1", vertices[1] != nil),
+          ("vertex2", vertices[2] != nil),
+        ], close)
     }
     return Triangle(v0, v1, v2, materialIndex: material)
   }
 
   /// `TriangleMesh { obj_file PATH }`, the path relative to the scene
   /// file's folder; the mesh is one object, a group of its triangles.
-  private mutating func parseTriangleMesh(material: Int) throws(SceneError) -> SceneObject<Double> {
+  private mutating func parseTriangleMesh(material: Int) throws(SceneError)
+    -> SceneObject<Double>
+  {
     var path: (String, SceneToken)?
     let close = try parseFields(
       "TriangleMesh", ["obj_file"]
@@ -871,7 +922,9 @@ public struct SceneParser {
   /// with `positive` for the radius. The plain form, nearly every sphere
   /// of a generated scene, is read in one pass first; whatever that pass
   /// leaves, errors included, is read token by token.
-  private mutating func parseSphere(material: Int) throws(SceneError) -> Sphere<Double> {
+  private mutating func parseSphere(material: Int) throws(SceneError) -> Sphere<
+    Double
+  > {
     let start = tokenizer.position
     if readsPlainSpheres, let (center, radius) = tokenizer.plainSphere() {
       if radius > 0 {
@@ -889,7 +942,8 @@ public struct SceneParser {
       case .close:
         guard let center, let radius else {
           throw missing(
-            "Sphere", [("center", center != nil), ("radius", radius != nil)], token)
+            "Sphere", [("center", center != nil), ("radius", radius != nil)],
+            token)
         }
         return Sphere(center: center, radius: radius, materialIndex: material)
       case .end, .open:
@@ -913,7 +967,9 @@ public struct SceneParser {
     }
   }
 
-  private mutating func parsePlane(material: Int) throws(SceneError) -> Plane<Double> {
+  private mutating func parsePlane(material: Int) throws(SceneError) -> Plane<
+    Double
+  > {
     var normal: Vector3<Double>?
     var offset: (Double, SceneToken)?
     let close = try parseFields(
@@ -927,7 +983,8 @@ public struct SceneParser {
       }
     }
     guard let normal, let offset else {
-      throw missing("Plane", [("normal", normal != nil), ("offset", offset != nil)], close)
+      throw missing(
+        "Plane", [("normal", normal != nil), ("offset", offset != nil)], close)
     }
     let plane = Plane(normal: normal, offset: offset.0, materialIndex: material)
     // Dividing by the normal's length overflows for a tiny normal and a
@@ -963,14 +1020,16 @@ public struct SceneParser {
       case .end, .open:
         throw unexpectedEnd(token, in: block)
       case .word:
-        guard let index = fields.firstIndex(where: { tokenizer.matches(token, $0) })
+        guard
+          let index = fields.firstIndex(where: { tokenizer.matches(token, $0) })
         else {
           throw unexpected(
             token, expected: "a field of \(block)",
             choices: fields.map { "\($0)" })
         }
         guard seen & (1 << index) == 0 else {
-          throw error(at: token, "'\(fields[index])' is given twice in \(block)")
+          throw error(
+            at: token, "'\(fields[index])' is given twice in \(block)")
         }
         seen |= 1 << index
         try read(&self, "\(fields[index])")
@@ -1024,7 +1083,9 @@ public struct SceneParser {
     return Vector3(x, y, z)
   }
 
-  private mutating func nonZeroVector(_ field: String) throws(SceneError) -> Vector3<Double> {
+  private mutating func nonZeroVector(_ field: String) throws(SceneError)
+    -> Vector3<Double>
+  {
     let start = peekStart()
     let value = try vector()
     guard value.maxMagnitude > 0 else {
@@ -1033,7 +1094,8 @@ public struct SceneParser {
     return value
   }
 
-  private mutating func color(_ field: String) throws(SceneError) -> RGB<Double> {
+  private mutating func color(_ field: String) throws(SceneError) -> RGB<Double>
+  {
     let start = peekStart()
     let value = try vector()
     guard value.x >= 0 && value.y >= 0 && value.z >= 0 else {
@@ -1045,16 +1107,20 @@ public struct SceneParser {
   private mutating func positive(_ field: String) throws(SceneError) -> Double {
     let (value, token) = try numberAndToken()
     guard value > 0 else {
-      throw error(at: token, "'\(field)' must be positive, found \(text(token))")
+      throw error(
+        at: token, "'\(field)' must be positive, found \(text(token))")
     }
     return value
   }
 
-  private mutating func nonNegative(_ field: String) throws(SceneError) -> Double {
+  private mutating func nonNegative(_ field: String) throws(SceneError)
+    -> Double
+  {
     let token = peekStart()
     let value = try number()
     guard value >= 0 else {
-      throw error(at: token, "'\(field)' must not be negative, found \(text(token))")
+      throw error(
+        at: token, "'\(field)' must not be negative, found \(text(token))")
     }
     return value
   }
@@ -1064,7 +1130,8 @@ public struct SceneParser {
     let value = try number()
     guard value >= 0, value == value.rounded(), value < 1e15 else {
       throw error(
-        at: token, "'\(field)' must be a whole number ≥ 0, found \(text(token))")
+        at: token, "'\(field)' must be a whole number ≥ 0, found \(text(token))"
+      )
     }
     return Int(value)
   }
@@ -1077,7 +1144,8 @@ public struct SceneParser {
     let token = try next()
     guard tokenizer.matches(token, field) else {
       throw error(
-        at: token, "expected '\(field)' at the start of \(block), found '\(text(token))'")
+        at: token,
+        "expected '\(field)' at the start of \(block), found '\(text(token))'")
     }
     let valueToken = peekStart()
     return (try wholeNumber("\(field)"), valueToken)
@@ -1136,7 +1204,8 @@ public struct SceneParser {
   }
 
   private func error(at token: SceneToken, _ message: String) -> SceneError {
-    SceneError(file: file, line: token.line, column: token.column, message: message)
+    SceneError(
+      file: file, line: token.line, column: token.column, message: message)
   }
 
   private mutating func expect(
@@ -1146,11 +1215,14 @@ public struct SceneParser {
     guard token.kind == kind else {
       throw error(
         at: token,
-        "expected \(what), found \(token.kind == .end ? "end of file" : "'\(text(token))'")")
+        "expected \(what), found \(token.kind == .end ? "end of file" : "'\(text(token))'")"
+      )
     }
   }
 
-  private func unexpectedEnd(_ token: SceneToken, in block: String) -> SceneError {
+  private func unexpectedEnd(_ token: SceneToken, in block: String)
+    -> SceneError
+  {
     token.kind == .end
       ? error(at: token, "unexpected end of file: \(block) is missing its '}'")
       : error(at: token, "unexpected '\(text(token))' in \(block)")
@@ -1177,7 +1249,8 @@ public struct SceneParser {
     if let suggestion = nearest(to: tokenizer.text(of: token), in: choices) {
       message += "; did you mean '\(suggestion)'?"
     } else {
-      message += " (expected one of \(choices.map { "'\($0)'" }.joined(separator: ", ")))"
+      message +=
+        " (expected one of \(choices.map { "'\($0)'" }.joined(separator: ", ")))"
     }
     return error(at: token, message)
   }
@@ -1250,7 +1323,8 @@ func openRegularFile(
   // nothing for the regular files that are read.
   let descriptor = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC)
   guard descriptor >= 0 else {
-    throw FileReadError(reason: "cannot open the file: \(String(cString: strerror(errno)))")
+    throw FileReadError(
+      reason: "cannot open the file: \(String(cString: strerror(errno)))")
   }
   var status = stat()
   guard fstat(descriptor, &status) == 0 else {
@@ -1265,7 +1339,8 @@ func openRegularFile(
   guard Int(status.st_size) <= maximumFileSize else {
     close(descriptor)
     throw FileReadError(
-      reason: "the file is \(status.st_size) bytes; the limit is \(maximumFileSize)")
+      reason:
+        "the file is \(status.st_size) bytes; the limit is \(maximumFileSize)")
   }
   return (descriptor, Int(status.st_size))
 }
@@ -1288,9 +1363,12 @@ func readOpenFile(
     count = fread(buffer.baseAddress, 1, expected, handle)
     failed = count < expected && ferror(handle) != 0
   }
-  var chunk = [UInt8](repeating: 0, count: failed || bytes.count < expected ? 0 : 1 << 16)
+  var chunk = [UInt8](
+    repeating: 0, count: failed || bytes.count < expected ? 0 : 1 << 16)
   while !failed && !chunk.isEmpty {
-    let read = chunk.withUnsafeMutableBytes { fread($0.baseAddress, 1, $0.count, handle) }
+    let read = chunk.withUnsafeMutableBytes {
+      fread($0.baseAddress, 1, $0.count, handle)
+    }
     if read > 0 { bytes.append(contentsOf: chunk[0..<read]) }
     if read < chunk.count {
       failed = ferror(handle) != 0
@@ -1298,7 +1376,8 @@ func readOpenFile(
     }
   }
   if failed {
-    throw FileReadError(reason: "cannot read the file: \(String(cString: strerror(errno)))")
+    throw FileReadError(
+      reason: "cannot read the file: \(String(cString: strerror(errno)))")
   }
   return bytes
 }

@@ -41,7 +41,11 @@ struct SceneTokenizer {
 
   var position: Position {
     get { Position(index: index, line: line, lineStart: lineStart) }
-    set { (index, line, lineStart) = (newValue.index, newValue.line, newValue.lineStart) }
+    set {
+      (index, line, lineStart) = (
+        newValue.index, newValue.line, newValue.lineStart
+      )
+    }
   }
 
   mutating func next() -> SceneToken {
@@ -185,13 +189,15 @@ struct SceneTokenizer {
   func text(of token: SceneToken) -> String {
     switch token.kind {
     case .end: return "end of file"
-    default: return String(decoding: bytes[token.start..<token.end], as: UTF8.self)
+    default:
+      return String(decoding: bytes[token.start..<token.end], as: UTF8.self)
     }
   }
 
   /// Whether the token is exactly `keyword`, without building a String.
   func matches(_ token: SceneToken, _ keyword: StaticString) -> Bool {
-    guard token.kind == .word, token.end - token.start == keyword.utf8CodeUnitCount
+    guard token.kind == .word,
+      token.end - token.start == keyword.utf8CodeUnitCount
     else { return false }
     let pointer = keyword.utf8Start
     for offset in 0..<keyword.utf8CodeUnitCount

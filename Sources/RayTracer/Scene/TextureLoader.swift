@@ -40,7 +40,8 @@ public enum TextureLoader {
     do {
       return Texture(image: try BMPReader.decode(bytes))
     } catch {
-      throw SceneError(file: file, line: 0, column: 0, message: error.description)
+      throw SceneError(
+        file: file, line: 0, column: 0, message: error.description)
     }
   }
 }

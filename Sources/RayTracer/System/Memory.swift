@@ -5,12 +5,16 @@ enum Memory {
   /// Asks the kernel to back `buffer` with 2 MiB pages where it can.
   static func adviseHugePages(_ buffer: UnsafeMutableRawBufferPointer) {
     #if os(Linux)
-    guard let base = buffer.baseAddress, buffer.count >= 1 << 21 else { return }
-    let page = 4096
-    let start = (Int(bitPattern: base) + page - 1) & ~(page - 1)
-    let end = (Int(bitPattern: base) + buffer.count) & ~(page - 1)
-    guard end > start, let pointer = UnsafeMutableRawPointer(bitPattern: start) else { return }
-    _ = madvise(pointer, end - start, MADV_HUGEPAGE)
+      guard let base = buffer.baseAddress, buffer.count >= 1 << 21 else {
+        return
+      }
+      let page = 4096
+      let start = (Int(bitPattern: base) + page - 1) & ~(page - 1)
+      let end = (Int(bitPattern: base) + buffer.count) & ~(page - 1)
+      guard end > start,
+        let pointer = UnsafeMutableRawPointer(bitPattern: start)
+      else { return }
+      _ = madvise(pointer, end - start, MADV_HUGEPAGE)
     #endif
   }
 }
@@ -19,7 +23,8 @@ extension Array {
   /// `reserveCapacity`, with the storage advised onto 2 MiB pages.
   mutating func reserveCapacityOnHugePages(_ capacity: Int) {
     guard capacity > self.capacity else { return }
-    var storage = [Element](unsafeUninitializedCapacity: capacity) { buffer, count in
+    var storage = [Element](unsafeUninitializedCapacity: capacity) {
+      buffer, count in
       Memory.adviseHugePages(UnsafeMutableRawBufferPointer(buffer))
       count = 0
     }

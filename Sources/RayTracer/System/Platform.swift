@@ -4,11 +4,11 @@
 // names and types; where they differ, the difference is wrapped in this
 // folder (see `Platform`).
 #if canImport(Darwin)
-@_exported import Darwin
+  @_exported import Darwin
 #elseif canImport(Glibc)
-@_exported import Glibc
+  @_exported import Glibc
 #else
-#error("raytrace builds on macOS (Darwin) and Linux (Glibc)")
+  #error("raytrace builds on macOS (Darwin) and Linux (Glibc)")
 #endif
 
 /// What differs between macOS and Linux, behind one name.
@@ -16,9 +16,9 @@ public enum Platform {
   /// The process's environment, for `posix_spawn`.
   static var environment: UnsafeMutablePointer<UnsafeMutablePointer<CChar>?>? {
     #if canImport(Darwin)
-    return _NSGetEnviron().pointee
+      return _NSGetEnviron().pointee
     #else
-    return environ
+      return environ
     #endif
   }
 
@@ -26,9 +26,9 @@ public enum Platform {
   /// is in bytes on macOS and in KiB on Linux.
   static func peakBytes(_ usage: rusage) -> Int {
     #if canImport(Darwin)
-    return Int(usage.ru_maxrss)
+      return Int(usage.ru_maxrss)
     #else
-    return Int(usage.ru_maxrss) * 1024
+      return Int(usage.ru_maxrss) * 1024
     #endif
   }
 
@@ -36,17 +36,18 @@ public enum Platform {
   /// say.
   public static func currentExecutable() -> String? {
     #if canImport(Darwin)
-    var size: UInt32 = 0
-    _ = _NSGetExecutablePath(nil, &size)
-    var buffer = [CChar](repeating: 0, count: Int(size) + 1)
-    guard _NSGetExecutablePath(&buffer, &size) == 0 else { return nil }
-    return String(cString: buffer)
+      var size: UInt32 = 0
+      _ = _NSGetExecutablePath(nil, &size)
+      var buffer = [CChar](repeating: 0, count: Int(size) + 1)
+      guard _NSGetExecutablePath(&buffer, &size) == 0 else { return nil }
+      return String(cString: buffer)
     #else
-    var buffer = [CChar](repeating: 0, count: 4096)
-    let length = readlink("/proc/self/exe", &buffer, buffer.count - 1)
-    guard length > 0 else { return nil }
-    return String(
-      decoding: buffer[0..<length].map { UInt8(bitPattern: $0) }, as: UTF8.self)
+      var buffer = [CChar](repeating: 0, count: 4096)
+      let length = readlink("/proc/self/exe", &buffer, buffer.count - 1)
+      guard length > 0 else { return nil }
+      return String(
+        decoding: buffer[0..<length].map { UInt8(bitPattern: $0) },
+        as: UTF8.self)
     #endif
   }
 

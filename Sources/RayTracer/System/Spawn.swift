@@ -10,9 +10,9 @@ extension Platform {
     errorPipe: (read: Int32, write: Int32)
   ) -> Result<pid_t, SpawnError> {
     #if canImport(Darwin)
-    var actions: posix_spawn_file_actions_t? = nil
+      var actions: posix_spawn_file_actions_t? = nil
     #else
-    var actions = posix_spawn_file_actions_t()
+      var actions = posix_spawn_file_actions_t()
     #endif
     posix_spawn_file_actions_init(&actions)
     defer { posix_spawn_file_actions_destroy(&actions) }

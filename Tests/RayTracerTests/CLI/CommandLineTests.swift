@@ -12,7 +12,8 @@ final class CommandLineTests: XCTestCase {
   }
 
   static var packageRoot: String {
-    var parts = "\(#filePath)".split(separator: "/", omittingEmptySubsequences: false)
+    var parts = "\(#filePath)".split(
+      separator: "/", omittingEmptySubsequences: false)
     parts.removeLast(4)
     return parts.joined(separator: "/")
   }
@@ -22,12 +23,13 @@ final class CommandLineTests: XCTestCase {
   /// `xctest`), the bundle's own folder elsewhere.
   static var productsDirectory: URL {
     #if os(macOS)
-    for bundle in Bundle.allBundles where bundle.bundlePath.hasSuffix(".xctest") {
-      return bundle.bundleURL.deletingLastPathComponent()
-    }
-    fatalError("cannot find the products directory")
+      for bundle in Bundle.allBundles
+      where bundle.bundlePath.hasSuffix(".xctest") {
+        return bundle.bundleURL.deletingLastPathComponent()
+      }
+      fatalError("cannot find the products directory")
     #else
-    return Bundle.main.bundleURL
+      return Bundle.main.bundleURL
     #endif
   }
 
@@ -40,7 +42,8 @@ final class CommandLineTests: XCTestCase {
 
   override func setUpWithError() throws {
     folder = NSTemporaryDirectory() + "raytrace-cli-\(UUID().uuidString)"
-    try FileManager.default.createDirectory(atPath: folder, withIntermediateDirectories: true)
+    try FileManager.default.createDirectory(
+      atPath: folder, withIntermediateDirectories: true)
   }
 
   override func tearDownWithError() throws {
@@ -68,7 +71,8 @@ final class CommandLineTests: XCTestCase {
   }
 
   func files() -> [String] {
-    ((try? FileManager.default.contentsOfDirectory(atPath: folder)) ?? []).sorted()
+    ((try? FileManager.default.contentsOfDirectory(atPath: folder)) ?? [])
+      .sorted()
   }
 
   func read(_ name: String) throws -> [UInt8] {
@@ -87,9 +91,11 @@ final class CommandLineTests: XCTestCase {
     XCTAssertEqual(outcome.status, 0)
     for option in [
       "--output", "--size", "--depth", "--depth-range", "--normals", "--style",
-      "--stats", "--precision", "--intersection", "--threads", "--png-level", "-input",
+      "--stats", "--precision", "--intersection", "--threads", "--png-level",
+      "-input",
     ] {
-      XCTAssertTrue(outcome.stdout.contains(option), "help does not mention \(option)")
+      XCTAssertTrue(
+        outcome.stdout.contains(option), "help does not mention \(option)")
     }
   }
 
@@ -102,7 +108,8 @@ final class CommandLineTests: XCTestCase {
   func testUsage_UnknownExtensionIsExit64() throws {
     let outcome = try run(["scenes/spheres.txt", "-o", folder + "/a.jpg"])
     XCTAssertEqual(outcome.status, 64)
-    XCTAssertTrue(outcome.stderr.contains("Cannot tell the format"), outcome.stderr)
+    XCTAssertTrue(
+      outcome.stderr.contains("Cannot tell the format"), outcome.stderr)
     XCTAssertEqual(files(), [])
   }
 
@@ -114,7 +121,8 @@ final class CommandLineTests: XCTestCase {
 
   func testUsage_BadSizeIsExit64() throws {
     for size in [["0", "10"], ["-5", "10"], ["1000000", "1000000"], ["10"]] {
-      let outcome = try run(["scenes/spheres.txt", "-o", folder + "/a.png", "--size"] + size)
+      let outcome = try run(
+        ["scenes/spheres.txt", "-o", folder + "/a.png", "--size"] + size)
       XCTAssertEqual(outcome.status, 64, "size \(size): \(outcome.stderr)")
     }
   }
@@ -136,13 +144,18 @@ final class CommandLineTests: XCTestCase {
     let outcome = try run([folder + "/none.txt", "-o", folder + "/out.png"])
     XCTAssertEqual(outcome.status, 1)
     XCTAssertEqual(
-      outcome.stderr, "\(folder)/none.txt: error: cannot open the file: No such file or directory\n")
+      outcome.stderr,
+      "\(folder)/none.txt: error: cannot open the file: No such file or directory\n"
+    )
   }
 
   func testOutputError_UnwritablePathBeforeRendering() throws {
-    let outcome = try run(["scenes/spheres.txt", "-o", folder + "/missing/out.png"])
+    let outcome = try run([
+      "scenes/spheres.txt", "-o", folder + "/missing/out.png",
+    ])
     XCTAssertEqual(outcome.status, 1)
-    XCTAssertTrue(outcome.stderr.hasPrefix("raytrace: error: cannot write"), outcome.stderr)
+    XCTAssertTrue(
+      outcome.stderr.hasPrefix("raytrace: error: cannot write"), outcome.stderr)
     XCTAssertEqual(outcome.stderr.filter { $0 == "\n" }.count, 1)
   }
 
@@ -158,7 +171,10 @@ final class CommandLineTests: XCTestCase {
     let shaded = try PNGDecoder.decode(try read("s.png"))
     XCTAssertEqual(shaded.width, 40)
     XCTAssertEqual(shaded.height, 30)
-    XCTAssertGreaterThan(Set(stride(from: 0, to: shaded.bytes.count, by: 3).map { shaded.bytes[$0] }).count, 10)
+    XCTAssertGreaterThan(
+      Set(
+        stride(from: 0, to: shaded.bytes.count, by: 3).map { shaded.bytes[$0] }
+      ).count, 10)
     let depth = try read("d.pfm")
     XCTAssertEqual(depth.count, "Pf\n40 30\n-1.0\n".utf8.count + 40 * 30 * 4)
     let normals = try read("n.npy")
@@ -167,7 +183,10 @@ final class CommandLineTests: XCTestCase {
   }
 
   func testRender_PPM() throws {
-    let outcome = try run(["scenes/single-sphere.txt", "--size", "8", "6", "--normals", folder + "/n.ppm"])
+    let outcome = try run([
+      "scenes/single-sphere.txt", "--size", "8", "6", "--normals",
+      folder + "/n.ppm",
+    ])
     XCTAssertEqual(outcome.status, 0, outcome.stderr)
     let bytes = try read("n.ppm")
     XCTAssertEqual(bytes.count, "P6\n8 6\n255\n".utf8.count + 8 * 6 * 3)
@@ -177,7 +196,8 @@ final class CommandLineTests: XCTestCase {
     for threads in ["1", "2", "3"] {
       let outcome = try run([
         "scenes/spheres.txt", "--size", "64", "48", "--threads", threads,
-        "-o", folder + "/s\(threads).png", "--depth", folder + "/d\(threads).pfm",
+        "-o", folder + "/s\(threads).png", "--depth",
+        folder + "/d\(threads).pfm",
       ])
       XCTAssertEqual(outcome.status, 0, outcome.stderr)
     }
@@ -188,7 +208,8 @@ final class CommandLineTests: XCTestCase {
 
   func testRender_AssignmentCommandLine() throws {
     let outcome = try run([
-      "-input", "scenes/spheres.txt", "-size", "20", "20", "-output", folder + "/a.png",
+      "-input", "scenes/spheres.txt", "-size", "20", "20", "-output",
+      folder + "/a.png",
       "-normals", folder + "/an.png", "-depth", "8", "18", folder + "/ad.png",
     ])
     XCTAssertEqual(outcome.status, 0, outcome.stderr)
@@ -200,13 +221,19 @@ final class CommandLineTests: XCTestCase {
 
   func testStats_ReportsThroughputAndWhatWasLeftOut() throws {
     let outcome = try run([
-      "scenes/spheres-only.txt", "--size", "16", "16", "--depth", folder + "/d.png", "--stats",
+      "scenes/spheres-only.txt", "--size", "16", "16", "--depth",
+      folder + "/d.png", "--stats",
     ])
     XCTAssertEqual(outcome.status, 0, outcome.stderr)
-    let render = outcome.stderr.split(separator: "\n").first { $0.hasPrefix("render:") }
+    let render = outcome.stderr.split(separator: "\n").first {
+      $0.hasPrefix("render:")
+    }
     XCTAssertNotNil(render, outcome.stderr)
     XCTAssertTrue(render?.contains("Mrays/s") ?? false)
-    XCTAssertTrue(outcome.stderr.contains("left out: shading (lights, materials), normals, plane tests (no planes)"), outcome.stderr)
+    XCTAssertTrue(
+      outcome.stderr.contains(
+        "left out: shading (lights, materials), normals, plane tests (no planes)"
+      ), outcome.stderr)
   }
 
   /// `--repeat` renders again in the same process for a warm median: the
@@ -222,15 +249,21 @@ final class CommandLineTests: XCTestCase {
       "--depth", folder + "/again.npy", "--stats", "--repeat", "3",
     ])
     XCTAssertEqual(repeated.status, 0, repeated.stderr)
-    let render = repeated.stderr.split(separator: "\n").first { $0.hasPrefix("render:") }
+    let render = repeated.stderr.split(separator: "\n").first {
+      $0.hasPrefix("render:")
+    }
     XCTAssertTrue(
-      render?.contains("Mrays/s (median of 3 repeated renders; first render ") ?? false,
+      render?.contains("Mrays/s (median of 3 repeated renders; first render ")
+        ?? false,
       repeated.stderr)
     XCTAssertEqual(try read("once.png"), try read("again.png"))
     XCTAssertEqual(try read("once.npy"), try read("again.npy"))
-    let negative = try run(["scenes/spheres.txt", "--depth", folder + "/d.png", "--repeat", "-1"])
+    let negative = try run([
+      "scenes/spheres.txt", "--depth", folder + "/d.png", "--repeat", "-1",
+    ])
     XCTAssertEqual(negative.status, 64)
-    XCTAssertTrue(negative.stderr.contains("--repeat must be between 0 and 1000; got -1."))
+    XCTAssertTrue(
+      negative.stderr.contains("--repeat must be between 0 and 1000; got -1."))
   }
 
   func testReport_OneSceneMarkdownAndCSV() throws {
@@ -242,7 +275,8 @@ final class CommandLineTests: XCTestCase {
     XCTAssertEqual(outcome.status, 0, outcome.stderr)
     let lines = outcome.stdout.split(separator: "\n")
     XCTAssertEqual(lines.count, 2 + 4, outcome.stdout)
-    XCTAssertTrue(lines[2].hasPrefix("| single-sphere | float | naive |"), String(lines[2]))
+    XCTAssertTrue(
+      lines[2].hasPrefix("| single-sphere | float | naive |"), String(lines[2]))
     let csv = String(decoding: try read("r.csv"), as: UTF8.self)
     XCTAssertEqual(csv.split(separator: "\n").count, 5)
     XCTAssertEqual(files().filter { $0.hasSuffix(".png") }.count, 4)
@@ -253,22 +287,31 @@ final class CommandLineTests: XCTestCase {
       "report", "scenes/single-sphere.txt", "--size", "8", "8", "--runs", "1",
     ])
     XCTAssertEqual(outcome.status, 0, outcome.stderr)
-    let rows = outcome.stdout.split(separator: "\n").filter { $0.hasPrefix("| single-sphere | 4×4 |") }
-    XCTAssertEqual(rows.map { $0.split(separator: "|")[2].trimmingCharacters(in: .whitespaces) }, ["1", "4", "16", "64"])
+    let rows = outcome.stdout.split(separator: "\n").filter {
+      $0.hasPrefix("| single-sphere | 4×4 |")
+    }
+    XCTAssertEqual(
+      rows.map {
+        $0.split(separator: "|")[2].trimmingCharacters(in: .whitespaces)
+      }, ["1", "4", "16", "64"])
   }
 
   func testRender_MeshAndTransformsScene() throws {
     let outcome = try run([
-      "scenes/mesh-and-transforms.txt", "--size", "40", "30", "-o", folder + "/m.png", "--stats",
+      "scenes/mesh-and-transforms.txt", "--size", "40", "30", "-o",
+      folder + "/m.png", "--stats",
     ])
     XCTAssertEqual(outcome.status, 0, outcome.stderr)
-    XCTAssertTrue(outcome.stderr.contains("21 triangles, 1 transformed spheres"), outcome.stderr)
+    XCTAssertTrue(
+      outcome.stderr.contains("21 triangles, 1 transformed spheres"),
+      outcome.stderr)
   }
 
   func testRender_SupersamplingIsTheSameForAnyThreadCount() throws {
     for threads in ["1", "2"] {
       let outcome = try run([
-        "scenes/spheres.txt", "--size", "32", "24", "--samples", "9", "--filter", "tent",
+        "scenes/spheres.txt", "--size", "32", "24", "--samples", "9",
+        "--filter", "tent",
         "--threads", threads, "-o", folder + "/aa\(threads).pfm",
       ])
       XCTAssertEqual(outcome.status, 0, outcome.stderr)
@@ -277,9 +320,12 @@ final class CommandLineTests: XCTestCase {
   }
 
   func testUsage_SamplesMustBeASquare() throws {
-    let outcome = try run(["scenes/spheres.txt", "-o", folder + "/a.png", "--samples", "5"])
+    let outcome = try run([
+      "scenes/spheres.txt", "-o", folder + "/a.png", "--samples", "5",
+    ])
     XCTAssertEqual(outcome.status, 64)
-    XCTAssertTrue(outcome.stderr.contains("--samples must be a square"), outcome.stderr)
+    XCTAssertTrue(
+      outcome.stderr.contains("--samples must be a square"), outcome.stderr)
   }
 
   func testSceneError_DevicesAreRefusedNotRead() throws {
@@ -288,12 +334,14 @@ final class CommandLineTests: XCTestCase {
     XCTAssertEqual(outcome.status, 1)
     XCTAssertEqual(outcome.stderr, "/dev/zero: error: not a regular file\n")
     let scene = folder + "/mesh.txt"
-    try "PerspectiveCamera { center 0 0 5 direction 0 0 -1 up 0 1 0 angle 30 }\nGroup { numObjects 1 TriangleMesh { obj_file /dev/zero } }\n"
+    try
+      "PerspectiveCamera { center 0 0 5 direction 0 0 -1 up 0 1 0 angle 30 }\nGroup { numObjects 1 TriangleMesh { obj_file /dev/zero } }\n"
       .write(toFile: scene, atomically: true, encoding: .utf8)
     outcome = try run([scene, "-o", folder + "/a.png"])
     XCTAssertEqual(outcome.status, 1)
     XCTAssertEqual(
-      outcome.stderr, "\(scene):2:46: error: cannot read '/dev/zero': not a regular file\n")
+      outcome.stderr,
+      "\(scene):2:46: error: cannot read '/dev/zero': not a regular file\n")
   }
 
   // MARK: - The course's property lists and textures
@@ -304,7 +352,9 @@ final class CommandLineTests: XCTestCase {
     let copy = folder + "/scene.txt"
     try FileManager.default.copyItem(
       atPath: Self.packageRoot + "/scenes/spheres.plist", toPath: copy)
-    try run(["scenes/spheres.txt", "--size", "32", "24", "-o", folder + "/t.png"])
+    try run([
+      "scenes/spheres.txt", "--size", "32", "24", "-o", folder + "/t.png",
+    ])
     let outcome = try run([copy, "--size", "32", "24", "-o", folder + "/p.png"])
     XCTAssertEqual(outcome.status, 0, outcome.stderr)
     XCTAssertEqual(try read("t.png"), try read("p.png"))
@@ -339,7 +389,8 @@ final class CommandLineTests: XCTestCase {
     ])
     XCTAssertEqual(depth.status, 0, depth.stderr)
     XCTAssertTrue(
-      depth.stderr.contains("textures: none read (no shaded image is requested)"),
+      depth.stderr.contains(
+        "textures: none read (no shaded image is requested)"),
       depth.stderr)
     let shaded = try run([
       scene, "--size", "16", "12", "-o", folder + "/s.png", "--stats",
@@ -374,10 +425,10 @@ final class CommandLineTests: XCTestCase {
   func testSceneError_PlistKeyPath() throws {
     let path = folder + "/bad.plist"
     try """
-      <?xml version="1.0" encoding="UTF-8"?>
-      <plist version="1.0"><dict><key>Camera</key><dict>
-      <key>center</key><string>0 0</string></dict></dict></plist>
-      """.write(toFile: path, atomically: true, encoding: .utf8)
+    <?xml version="1.0" encoding="UTF-8"?>
+    <plist version="1.0"><dict><key>Camera</key><dict>
+    <key>center</key><string>0 0</string></dict></dict></plist>
+    """.write(toFile: path, atomically: true, encoding: .utf8)
     let outcome = try run([path, "-o", folder + "/x.png"])
     XCTAssertEqual(outcome.status, 1)
     XCTAssertEqual(

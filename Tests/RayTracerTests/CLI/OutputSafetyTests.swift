@@ -156,12 +156,15 @@ final class OutputSafetyTests: XCTestCase {
   /// A mesh named with a control character is quoted escaped.
   func testMeshErrorNames_AreEscaped() throws {
     let scene = folder + "/scene.txt"
-    try Array("""
+    try Array(
+      """
       PerspectiveCamera { center 0 0 5 direction 0 0 -1 up 0 1 0 angle 30 }
       Group { numObjects 1 TriangleMesh { obj_file "bad\u{1B}[31m.obj" } }
 
-      """.utf8).write(to: scene)
-    try Array("v 0 0 0\nf 1 2 3\n".utf8).write(to: folder + "/bad\u{1B}[31m.obj")
+      """.utf8
+    ).write(to: scene)
+    try Array("v 0 0 0\nf 1 2 3\n".utf8).write(
+      to: folder + "/bad\u{1B}[31m.obj")
     let (status, stderr) = try run([scene, "-o", folder + "/o.png"])
     XCTAssertEqual(status, 1, stderr)
     XCTAssertFalse(stderr.contains("\u{1B}"), stderr)

@@ -53,7 +53,8 @@ final class AtomicFileTests: XCTestCase {
       try AtomicFile.writeAll([
         ([2], folder + "/keep.bin"), ([3], folder + "/missing/x.bin"),
       ]))
-    XCTAssertEqual(read(folder + "/keep.bin"), [1], "the first file must not be replaced")
+    XCTAssertEqual(
+      read(folder + "/keep.bin"), [1], "the first file must not be replaced")
     XCTAssertEqual(contents(), ["keep.bin"], "no temporary may be left behind")
   }
 
@@ -62,8 +63,12 @@ final class AtomicFileTests: XCTestCase {
     XCTAssertEqual(contents(), [])
   }
 
-  func testCheckWritable_RefusesAMissingFolderADirectoryAndAReadOnlyFolder() throws {
-    XCTAssertThrowsError(try AtomicFile.checkWritable(folder + "/no/such/dir.png")) {
+  func testCheckWritable_RefusesAMissingFolderADirectoryAndAReadOnlyFolder()
+    throws
+  {
+    XCTAssertThrowsError(
+      try AtomicFile.checkWritable(folder + "/no/such/dir.png")
+    ) {
       XCTAssertEqual(
         ($0 as? OutputError)?.description,
         "cannot write '\(folder)/no/such/dir.png': No such file or directory")

@@ -100,7 +100,8 @@ final class BMPReaderTests: XCTestCase {
       Array("PK".utf8) + good.dropFirst(2),
       "not a BMP file (it does not start with 'BM')")
     assertRefused(
-      Array(good.prefix(30)), "truncated BMP header: 30 bytes, at least 54 needed")
+      Array(good.prefix(30)),
+      "truncated BMP header: 30 bytes, at least 54 needed")
     assertRefused(
       Self.bmp(Self.image, headerSize: 64),
       "unsupported BMP info header of 64 bytes (supported: the Windows "

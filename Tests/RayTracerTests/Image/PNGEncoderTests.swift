@@ -14,7 +14,9 @@ final class PNGEncoderTests: XCTestCase {
         case 0: bytes += [40, 80, 120]
         case 1: bytes += [UInt8(column * 19 % 256), UInt8(row * 31 % 256), 200]
         default:
-          bytes += (0..<3).map { _ in UInt8.random(in: 0...255, using: &generator) }
+          bytes += (0..<3).map { _ in
+            UInt8.random(in: 0...255, using: &generator)
+          }
         }
       }
     }
@@ -45,10 +47,13 @@ final class PNGEncoderTests: XCTestCase {
     var offset = 8
     while offset + 12 <= png.count {
       let length = Int(PNGDecoder.readBigEndian(png, offset))
-      let type = String(decoding: png[(offset + 4)..<(offset + 8)], as: UTF8.self)
+      let type = String(
+        decoding: png[(offset + 4)..<(offset + 8)], as: UTF8.self)
       let data = Array(png[(offset + 8)..<(offset + 8 + length)])
       result.append(
-        Chunk(type: type, data: data, crc: PNGDecoder.readBigEndian(png, offset + 8 + length)))
+        Chunk(
+          type: type, data: data,
+          crc: PNGDecoder.readBigEndian(png, offset + 8 + length)))
       offset += 12 + length
     }
     XCTAssertEqual(offset, png.count, "bytes left after the last chunk")
@@ -70,7 +75,8 @@ final class PNGEncoderTests: XCTestCase {
   func testEncode_EveryChunkCRCMatchesTheBitwiseReference() {
     for chunk in chunks(PNGEncoder.encode(makeImage())) {
       XCTAssertEqual(
-        chunk.crc, referenceCRC(Array(chunk.type.utf8) + chunk.data), chunk.type)
+        chunk.crc, referenceCRC(Array(chunk.type.utf8) + chunk.data), chunk.type
+      )
     }
   }
 
@@ -93,11 +99,14 @@ final class PNGEncoderTests: XCTestCase {
 
   func testEncode_RowsCarryTheChosenFilterType() throws {
     let image = makeImage()
-    for (filter, type) in [(PNGFilter.none, 0), (.sub, 1), (.up, 2), (.paeth, 4)] {
+    for (filter, type) in [
+      (PNGFilter.none, 0), (.sub, 1), (.up, 2), (.paeth, 4),
+    ] {
       let filtered = PNGEncoder.filterRows(image, filter)
       let stride = image.width * 3 + 1
       for row in 0..<image.height {
-        XCTAssertEqual(Int(filtered[row * stride]), type, "\(filter) row \(row)")
+        XCTAssertEqual(
+          Int(filtered[row * stride]), type, "\(filter) row \(row)")
       }
     }
   }
@@ -106,7 +115,8 @@ final class PNGEncoderTests: XCTestCase {
     // A flat first row costs 0 under sub (all but the first pixel) but its
     // raw bytes are large; with all-zero pixels every filter ties and the
     // first candidate, none, is kept.
-    let image = Image8(width: 4, height: 2, bytes: [UInt8](repeating: 0, count: 24))
+    let image = Image8(
+      width: 4, height: 2, bytes: [UInt8](repeating: 0, count: 24))
     let filtered = PNGEncoder.filterRows(image, .adaptive)
     XCTAssertEqual(filtered[0], 0)
     XCTAssertEqual(filtered[13], 0)
@@ -125,7 +135,8 @@ final class PNGEncoderTests: XCTestCase {
 
   func testDecode_RejectsATruncatedFile() {
     let png = PNGEncoder.encode(makeImage())
-    XCTAssertThrowsError(try PNGDecoder.decode(Array(png.prefix(png.count - 5))))
+    XCTAssertThrowsError(
+      try PNGDecoder.decode(Array(png.prefix(png.count - 5))))
   }
 
   func testPaeth_PicksTheNearestNeighbour() {

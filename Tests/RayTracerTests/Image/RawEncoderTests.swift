@@ -6,7 +6,8 @@ final class RawEncoderTests: XCTestCase {
   func testPPM_HeaderThenBytes() {
     let image = Image8(width: 2, height: 1, bytes: [1, 2, 3, 4, 5, 6])
     XCTAssertEqual(
-      PPMEncoder.encode(image), Array("P6\n2 1\n255\n".utf8) + [1, 2, 3, 4, 5, 6])
+      PPMEncoder.encode(image),
+      Array("P6\n2 1\n255\n".utf8) + [1, 2, 3, 4, 5, 6])
   }
 
   func testPFM_OneChannelBottomRowFirstLittleEndian() {
@@ -25,39 +26,50 @@ final class RawEncoderTests: XCTestCase {
   }
 
   func testPFM_ThreeChannels() {
-    let image = RawImage<Float>(width: 1, height: 1, channels: 3, values: [0, 0, 1])
+    let image = RawImage<Float>(
+      width: 1, height: 1, channels: 3, values: [0, 0, 1])
     let bytes = PFMEncoder.encode(image)
     let header = Array("PF\n1 1\n-1.0\n".utf8)
     XCTAssertEqual(Array(bytes.prefix(header.count)), header)
-    XCTAssertEqual(Array(bytes.dropFirst(header.count)), [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0x80, 0x3F])
+    XCTAssertEqual(
+      Array(bytes.dropFirst(header.count)),
+      [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0x80, 0x3F])
   }
 
   func npyHeader(_ bytes: [UInt8]) -> (String, Int) {
     let length = Int(bytes[8]) | Int(bytes[9]) << 8
-    return (String(decoding: bytes[10..<(10 + length)], as: UTF8.self), 10 + length)
+    return (
+      String(decoding: bytes[10..<(10 + length)], as: UTF8.self), 10 + length
+    )
   }
 
   func testNPY_FloatHeaderAlignedAndValues() {
-    let image = RawImage<Float>(width: 3, height: 2, channels: 1, values: [1, 2, 3, 4, 5, 6])
+    let image = RawImage<Float>(
+      width: 3, height: 2, channels: 1, values: [1, 2, 3, 4, 5, 6])
     let bytes = NPYEncoder.encode(image)
     XCTAssertEqual(Array(bytes[0..<8]), [0x93] + Array("NUMPY".utf8) + [1, 0])
     let (header, dataStart) = npyHeader(bytes)
     XCTAssertEqual(dataStart % 64, 0, "data must start on a 64-byte boundary")
-    XCTAssertTrue(header.hasPrefix("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), }"))
+    XCTAssertTrue(
+      header.hasPrefix(
+        "{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), }"))
     XCTAssertTrue(header.hasSuffix("\n"))
     XCTAssertEqual(bytes.count - dataStart, 24)
-    XCTAssertEqual(Array(bytes[dataStart..<(dataStart + 4)]), [0, 0, 0x80, 0x3F])
+    XCTAssertEqual(
+      Array(bytes[dataStart..<(dataStart + 4)]), [0, 0, 0x80, 0x3F])
   }
 
   func testNPY_DoubleWithChannels() {
-    let image = RawImage<Double>(width: 1, height: 1, channels: 3, values: [0, 1, -2])
+    let image = RawImage<Double>(
+      width: 1, height: 1, channels: 3, values: [0, 1, -2])
     let bytes = NPYEncoder.encode(image)
     let (header, dataStart) = npyHeader(bytes)
     XCTAssertTrue(header.contains("'descr': '<f8'"))
     XCTAssertTrue(header.contains("'shape': (1, 1, 3)"))
     XCTAssertEqual(bytes.count - dataStart, 24)
     XCTAssertEqual(
-      Array(bytes[(dataStart + 8)..<(dataStart + 16)]), [0, 0, 0, 0, 0, 0, 0xF0, 0x3F])
+      Array(bytes[(dataStart + 8)..<(dataStart + 16)]),
+      [0, 0, 0, 0, 0, 0, 0xF0, 0x3F])
   }
 
   func testImageFormat_FromExtension() {

@@ -215,7 +215,9 @@ final class CompensatedTests: XCTestCase {
       eye: Vector3(-0x1p-60, 0, 0), as: Float.self)
     XCTAssertEqual(relative.offset.x, 1 + 0x1p-23, "offset, rounded once")
     var terms: [Double] = [1 + 0x1p-24, 0x1p-60]
-    let c: Float = terms.withUnsafeMutableBufferPointer { CameraRelative.roundedSum($0) }
+    let c: Float = terms.withUnsafeMutableBufferPointer {
+      CameraRelative.roundedSum($0)
+    }
     XCTAssertEqual(c, 1 + 0x1p-23, "Sum2, rounded once")
   }
 

@@ -224,8 +224,10 @@ final class CameraTests: XCTestCase {
         let tolerance = ReferenceScalar(T.ulpOfOne)
         for (name, got, want) in [
           ("course x", gotCourse, exactCourse), ("mit x", gotMit, exactMit),
-          ("course y", gotCourseRow,
-           -exactCourse + 2 / ReferenceScalar(width)),
+          (
+            "course y", gotCourseRow,
+            -exactCourse + 2 / ReferenceScalar(width)
+          ),
           ("mit y", gotMitRow, -exactMit),
         ] {
           XCTAssertLessThanOrEqual(

@@ -127,10 +127,12 @@ final class GroupTests: XCTestCase {
   /// transform and the other kinds come out in file order within each kind.
   func testFlattened_MixedKindsKeepFileOrder() throws {
     func sphere(_ index: Int) -> Sphere<Double> {
-      Sphere(center: Vector3(Double(index), 0, 0), radius: 1, materialIndex: index)
+      Sphere(
+        center: Vector3(Double(index), 0, 0), radius: 1, materialIndex: index)
     }
     let shift = try XCTUnwrap(
-      Transform(matrix: .translation(Vector3(0, 5, 0)), object: .sphere(sphere(2))))
+      Transform(
+        matrix: .translation(Vector3(0, 5, 0)), object: .sphere(sphere(2))))
     let squash = try XCTUnwrap(
       Transform(matrix: .scale(Vector3(1, 2, 1)), object: .sphere(sphere(9))))
     let triangle = Triangle<Double>(
@@ -138,7 +140,8 @@ final class GroupTests: XCTestCase {
     let root = Group([
       .sphere(sphere(0)), .triangle(triangle), .sphere(sphere(1)),
       .transform(shift), .transform(squash),
-      .group(Group([.sphere(sphere(3)), .triangle(triangle)])), .sphere(sphere(4)),
+      .group(Group([.sphere(sphere(3)), .triangle(triangle)])),
+      .sphere(sphere(4)),
     ])
     let all = root.flattened()
     XCTAssertEqual(all.spheres.map(\.materialIndex), [0, 1, 2, 3, 4])

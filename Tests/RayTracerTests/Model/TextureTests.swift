@@ -43,6 +43,7 @@ final class TextureTests: XCTestCase {
   /// Colours are the bytes over 255, exactly as Float or Double divide.
   func testColor_Scale() {
     let color: RGB<Float> = texture.color(at: TextureCoordinate(0.9, 0))
-    XCTAssertEqual(color, Vector3(Float(2) / 255, Float(1) / 255, Float(7) / 255))
+    XCTAssertEqual(
+      color, Vector3(Float(2) / 255, Float(1) / 255, Float(7) / 255))
   }
 }

@@ -41,7 +41,8 @@ final class CourseEngineTests: XCTestCase {
       threads: 2)
     settings.samples = samples
     settings.engine = engine
-    let folder = FileManager.default.temporaryDirectory.path
+    let folder =
+      FileManager.default.temporaryDirectory.path
       + "/course-engine-\(getpid())-\(engine)"
     try FileManager.default.createDirectory(
       atPath: folder, withIntermediateDirectories: true)

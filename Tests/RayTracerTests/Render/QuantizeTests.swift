@@ -12,12 +12,15 @@ final class QuantizeTests: XCTestCase {
     // In the reference precision (wider than Double where the platform
     // has it): v·255 in the value's own type, then rounded once more.
     let scaled = ReferenceScalar(value * 255)
-    let whole = style == .course ? scaled.rounded(.towardZero) : scaled.rounded()
+    let whole =
+      style == .course ? scaled.rounded(.towardZero) : scaled.rounded()
     return UInt8(whole)
   }
 
   func check<S: RayScalar>(_: S.Type) {
-    var values: [S] = [0, 1, -0.0, -1, 2, .infinity, -.infinity, .nan, .leastNonzeroMagnitude]
+    var values: [S] = [
+      0, 1, -0.0, -1, 2, .infinity, -.infinity, .nan, .leastNonzeroMagnitude,
+    ]
     // Exactly k/255 and (k + 1/2)/255, where truncation and rounding
     // change, and their neighbours.
     for k in 0...255 {
@@ -27,10 +30,14 @@ final class QuantizeTests: XCTestCase {
       }
     }
     var generator = SplitMix64(seed: 9)
-    for _ in 0..<10_000 { values.append(S(Double.random(in: 0..<1, using: &generator))) }
+    for _ in 0..<10_000 {
+      values.append(S(Double.random(in: 0..<1, using: &generator)))
+    }
     for style in ImageStyle.allCases {
       for value in values {
-        XCTAssertEqual(style.quantize(value), expected(value, style), "\(S.self) \(style) \(value)")
+        XCTAssertEqual(
+          style.quantize(value), expected(value, style),
+          "\(S.self) \(style) \(value)")
       }
     }
   }
@@ -38,6 +45,6 @@ final class QuantizeTests: XCTestCase {
   func testFloat() { check(Float.self) }
   func testDouble() { check(Double.self) }
   #if arch(x86_64) || arch(i386)
-  func testFloat80() { check(Float80.self) }
+    func testFloat80() { check(Float80.self) }
   #endif
 }

@@ -23,7 +23,8 @@ final class StiffSuiteTests: XCTestCase {
 
   static var stiffFolder: String {
     // Tests/RayTracerTests/Report/StiffSuiteTests.swift → the package root.
-    var parts = "\(#filePath)".split(separator: "/", omittingEmptySubsequences: false)
+    var parts = "\(#filePath)".split(
+      separator: "/", omittingEmptySubsequences: false)
     parts.removeLast(4)
     return parts.joined(separator: "/") + "/scenes/stiff"
   }
@@ -38,7 +39,8 @@ final class StiffSuiteTests: XCTestCase {
   func measure(
     _ name: String, _ precision: Precision, _ method: IntersectionMethod
   ) throws -> (AccuracyMeasurement, epsilon: Double) {
-    let scene = try SceneParser.parse(contentsOf: "\(Self.stiffFolder)/\(name).txt")
+    let scene = try SceneParser.parse(
+      contentsOf: "\(Self.stiffFolder)/\(name).txt")
     let reference = AccuracyRender.reference(
       scene, width: Self.size, height: Self.size, rays: precision)
     let (buffers, _) = AccuracyRender.render(
@@ -53,12 +55,15 @@ final class StiffSuiteTests: XCTestCase {
       let (m, epsilon) = try measure(name, precision, .stable)
       let ulps = m.maxRelativeError / epsilon
       XCTAssertLessThanOrEqual(
-        ulps, 4, "\(name) \(precision): max relative error of t \(ulps) ε > 4 ε")
-      XCTAssertEqual(m.disagreements, 0, "\(name) \(precision): hit/miss disagreements")
+        ulps, 4, "\(name) \(precision): max relative error of t \(ulps) ε > 4 ε"
+      )
+      XCTAssertEqual(
+        m.disagreements, 0, "\(name) \(precision): hit/miss disagreements")
       XCTAssertLessThanOrEqual(
         m.maxNormalErrorDegrees, normalBound,
         "\(name) \(precision): normal error \(m.maxNormalErrorDegrees)°")
-      XCTAssertGreaterThan(m.comparedHits, 0, "\(name): the scene must show something")
+      XCTAssertGreaterThan(
+        m.comparedHits, 0, "\(name): the scene must show something")
     }
   }
 
@@ -68,8 +73,10 @@ final class StiffSuiteTests: XCTestCase {
   func testStiffFolder_HoldsExactlyTheListedScenes() {
     let onDisk = (try? listFolder(Self.stiffFolder)) ?? []
     XCTAssertEqual(
-      onDisk.filter { $0.hasSuffix(".txt") }.map { String($0.dropLast(4)) }.sorted(),
-      Self.scenes.sorted(), "a stiff scene without a test, or a test without a scene")
+      onDisk.filter { $0.hasSuffix(".txt") }.map { String($0.dropLast(4)) }
+        .sorted(),
+      Self.scenes.sorted(),
+      "a stiff scene without a test, or a test without a scene")
   }
 
   // MARK: - Where naive fails (measured figures in the messages)

@@ -13,7 +13,8 @@ final class FuzzRegressionTests: XCTestCase {
   static let sphere = SceneParserTests.sphere
 
   static var packageRoot: String {
-    var parts = "\(#filePath)".split(separator: "/", omittingEmptySubsequences: false)
+    var parts = "\(#filePath)".split(
+      separator: "/", omittingEmptySubsequences: false)
     parts.removeLast(4)
     return parts.joined(separator: "/")
   }
@@ -62,7 +63,8 @@ final class FuzzRegressionTests: XCTestCase {
   /// A group of `count` copies of `object` (the format has no shorter way
   /// to write many objects).
   func group(_ count: Int, _ object: String) -> String {
-    "Group { numObjects \(count)\n" + String(repeating: object + "\n", count: count) + "}\n"
+    "Group { numObjects \(count)\n"
+      + String(repeating: object + "\n", count: count) + "}\n"
   }
 
   // MARK: - The seed corpus
@@ -72,7 +74,8 @@ final class FuzzRegressionTests: XCTestCase {
   func testCorpus_EveryFileParsesOrFailsOnOneLine() throws {
     let names = try FileManager.default.contentsOfDirectory(atPath: Self.corpus)
       .sorted()
-    XCTAssertGreaterThanOrEqual(names.count, 30, "the corpus is at \(Self.corpus)")
+    XCTAssertGreaterThanOrEqual(
+      names.count, 30, "the corpus is at \(Self.corpus)")
     var outcomes = (parsed: 0, failed: 0)
     for name in names {
       let path = Self.corpus + "/" + name
@@ -83,7 +86,8 @@ final class FuzzRegressionTests: XCTestCase {
         outcomes.failed += 1
         let description = error.description
         XCTAssertTrue(
-          description.hasPrefix("\(path):\(error.line):\(error.column): error: "),
+          description.hasPrefix(
+            "\(path):\(error.line):\(error.column): error: "),
           "\(name): \(description)")
         XCTAssertFalse(description.contains("\n"), "\(name): \(description)")
         XCTAssertGreaterThanOrEqual(error.line, 1, "\(name): \(description)")
@@ -100,18 +104,22 @@ final class FuzzRegressionTests: XCTestCase {
 
   /// A word of exactly `maximumWordLength` bytes is read as usual.
   func testWordLength_AtTheLimitParses() throws {
-    let radius = "1." + String(repeating: "0", count: SceneParser.maximumWordLength - 2)
+    let radius =
+      "1." + String(repeating: "0", count: SceneParser.maximumWordLength - 2)
     let scene = try parse(
-      Self.camera + "Group { numObjects 1 Sphere { center 0 0 0 radius \(radius) } }")
+      Self.camera
+        + "Group { numObjects 1 Sphere { center 0 0 0 radius \(radius) } }")
     XCTAssertEqual(
       scene.root, Group([.sphere(Sphere(center: .zero, radius: 1))]))
   }
 
   /// One byte more is an error at the word, quoting its start.
   func testWordLength_BeyondTheLimitIsAnError() {
-    let radius = "1." + String(repeating: "0", count: SceneParser.maximumWordLength - 1)
+    let radius =
+      "1." + String(repeating: "0", count: SceneParser.maximumWordLength - 1)
     assertError(
-      Self.camera + "Group { numObjects 1 Sphere { center 0 0 0 radius \(radius) } }",
+      Self.camera
+        + "Group { numObjects 1 Sphere { center 0 0 0 radius \(radius) } }",
       line: 2, column: 51,
       "a word of 4097 bytes ('1.0000000000000000000000…') is longer than the "
         + "limit of 4096 bytes")
@@ -161,7 +169,8 @@ final class FuzzRegressionTests: XCTestCase {
       _ = try SceneParser.parse(bytes: bytes, file: "test.txt")
       XCTFail("random bytes parsed")
     } catch {
-      XCTAssertTrue(error.description.hasPrefix("test.txt:1:"), error.description)
+      XCTAssertTrue(
+        error.description.hasPrefix("test.txt:1:"), error.description)
       XCTAssertFalse(error.description.contains("\n"), error.description)
       XCTAssertLessThan(error.description.utf8.count, 200, error.description)
     }
@@ -187,7 +196,8 @@ final class FuzzRegressionTests: XCTestCase {
       Self.camera + "Group\u{85} { }", line: 2, column: 1,
       "expected a block name, found 'Group\\u{85}'; did you mean 'Group'?")
     assertError(
-      Self.camera + "Group { numObjects 1 Sph\u{0}ere { } }", line: 2, column: 22,
+      Self.camera + "Group { numObjects 1 Sph\u{0}ere { } }", line: 2,
+      column: 22,
       "expected an object, found 'Sph\\u{0}ere'; did you mean 'Sphere'?")
     assertError(
       Array(Self.camera.utf8) + [0x47, 0x72, 0xFF, 0x75, 0x70], line: 2,
@@ -217,7 +227,9 @@ final class FuzzRegressionTests: XCTestCase {
   /// process limited to 1.5 GB trapped ("failed to allocate 8000024 bytes").
   func testCounts_NestedLyingCountsShareOneBudget() {
     let depth = SceneParser.maximumGroupDepth
-    let text = Self.camera + String(repeating: "Group { numObjects 999999\n", count: depth)
+    let text =
+      Self.camera
+      + String(repeating: "Group { numObjects 999999\n", count: depth)
     let parser = assertError(
       text, line: depth + 2, column: 1,
       "unexpected end of file: Group is missing its '}'")
@@ -239,7 +251,8 @@ final class FuzzRegressionTests: XCTestCase {
   func testCounts_MinimumObjectLength() throws {
     let shortest = "Group{numObjects 0}"
     XCTAssertEqual(shortest.utf8.count, SceneParser.minimumObjectLength)
-    let text = Self.camera + "Group{numObjects 3 \(shortest)\(shortest)\(shortest)}"
+    let text =
+      Self.camera + "Group{numObjects 3 \(shortest)\(shortest)\(shortest)}"
     XCTAssertEqual(try parse(text).root.objects.count, 3)
   }
 
@@ -264,7 +277,8 @@ final class FuzzRegressionTests: XCTestCase {
   /// The plane now fails at its offset.
   func testPlane_OffsetOverTinyNormalOverflows() {
     assertError(
-      Self.camera + "Group { numObjects 1 Plane { normal 0 0 1e-150 offset 1e300 } }",
+      Self.camera
+        + "Group { numObjects 1 Plane { normal 0 0 1e-150 offset 1e300 } }",
       line: 2, column: 55,
       "the plane is too far from the origin: offset 1e300 divided by the "
         + "normal's length is not a finite number")
@@ -273,7 +287,8 @@ final class FuzzRegressionTests: XCTestCase {
   /// The same tiny normal with an offset to match is the plane z = 1.
   func testPlane_TinyNormalWithMatchingOffset() throws {
     let scene = try parse(
-      Self.camera + "Group { numObjects 1 Plane { normal 0 0 1e-150 offset 1e-150 } }")
+      Self.camera
+        + "Group { numObjects 1 Plane { normal 0 0 1e-150 offset 1e-150 } }")
     XCTAssertEqual(
       scene.root, Group([.plane(Plane(normal: Vector3(0, 0, 1), offset: 1))]))
   }
@@ -298,11 +313,13 @@ final class FuzzRegressionTests: XCTestCase {
       column: 22, Self.beyondDouble)
     assertError(
       transform(
-        "UniformScale 1e300 Triangle { vertex0 0 0 0 vertex1 1e300 0 0 vertex2 0 1e300 0 }"),
+        "UniformScale 1e300 Triangle { vertex0 0 0 0 vertex1 1e300 0 0 vertex2 0 1e300 0 }"
+      ),
       line: 2, column: 22, Self.beyondDouble)
     // A radius of 1e-200 scaled by 1e-150 underflows to 0.
     assertError(
-      transform("UniformScale 1e-150 Sphere { center 0 0 0 radius 1e-200 }"), line: 2,
+      transform("UniformScale 1e-150 Sphere { center 0 0 0 radius 1e-200 }"),
+      line: 2,
       column: 22, Self.beyondDouble)
     // Each matrix is finite; their product is not.
     assertError(
@@ -349,7 +366,8 @@ final class FuzzRegressionTests: XCTestCase {
     XCTAssertEqual(scene.root.flattened().triangles.count, 1)
 
     assertError(
-      Self.camera + "Group { numObjects 1 TriangleMesh { obj_file no\u{1B}such.obj } }",
+      Self.camera
+        + "Group { numObjects 1 TriangleMesh { obj_file no\u{1B}such.obj } }",
       line: 2, column: 46,
       "cannot read 'no\\u{1B}such.obj': cannot open the file: No such file or "
         + "directory")
@@ -383,7 +401,8 @@ final class FuzzRegressionTests: XCTestCase {
   /// zero is).
   func testNumbers_ExtremeExponentsAndLengths() throws {
     func sphere(center: String = "0", radius: String = "1") -> String {
-      Self.camera + "Group { numObjects 1 Sphere { center \(center) 0 0 radius \(radius) } }"
+      Self.camera
+        + "Group { numObjects 1 Sphere { center \(center) 0 0 radius \(radius) } }"
     }
     assertError(
       sphere(radius: "1e999999999"), line: 2, column: 51,
@@ -403,7 +422,9 @@ final class FuzzRegressionTests: XCTestCase {
       sphere(radius: mantissa), line: 2, column: 51,
       "expected a finite number, found '\(mantissa)'")
 
-    for center in ["1e-999999999", "0." + String(repeating: "0", count: 4000) + "1"] {
+    for center in [
+      "1e-999999999", "0." + String(repeating: "0", count: 4000) + "1",
+    ] {
       let scene = try parse(sphere(center: center))
       XCTAssertEqual(
         scene.root, Group([.sphere(Sphere(center: .zero, radius: 1))]), center)

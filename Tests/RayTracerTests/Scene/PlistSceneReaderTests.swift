@@ -16,9 +16,11 @@ final class PlistSceneReaderTests: XCTestCase {
         atPath: "\(folder)/\(sub)", withIntermediateDirectories: true)
     }
     try "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n"
-      .write(toFile: "\(folder)/Meshes/tri.obj", atomically: true, encoding: .utf8)
+      .write(
+        toFile: "\(folder)/Meshes/tri.obj", atomically: true, encoding: .utf8)
     try "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
-      .write(toFile: "\(folder)/Meshes/plain.obj", atomically: true, encoding: .utf8)
+      .write(
+        toFile: "\(folder)/Meshes/plain.obj", atomically: true, encoding: .utf8)
   }
 
   override func tearDownWithError() throws {
@@ -170,7 +172,8 @@ final class PlistSceneReaderTests: XCTestCase {
         <key>Group</key><array><dict><key>type</key><string>TriangleMesh</string>
           <key>objFile</key><string>tri</string></dict></array>
         """)
-    XCTAssertEqual(scene.materials[0].texturePath, "\(folder)/Textures/wood.bmp")
+    XCTAssertEqual(
+      scene.materials[0].texturePath, "\(folder)/Textures/wood.bmp")
     XCTAssertEqual(scene.root.flattened().triangles.count, 1)
     assertError(
       Self.camera
@@ -198,7 +201,8 @@ final class PlistSceneReaderTests: XCTestCase {
           <key>objFile</key><string>plain</string></dict></array>
         """,
       "Group[0].objFile: material 0 has a texture, but the mesh "
-        + "'\(folder)/Meshes/plain.obj' has no texture coordinates (no face gives vt)")
+        + "'\(folder)/Meshes/plain.obj' has no texture coordinates (no face gives vt)"
+    )
   }
 
   func testErrors_KeyPaths() {
@@ -260,16 +264,19 @@ final class PlistSceneReaderTests: XCTestCase {
       Self.camera
         + "<key>Background</key><dict><key>color</key><string>1e999 0 0</string>"
         + "</dict><key>Group</key><array/>",
-      "Background.color: expected 3 numbers (finite, decimal), found \"1e999 0 0\"")
+      "Background.color: expected 3 numbers (finite, decimal), found \"1e999 0 0\""
+    )
   }
 
   /// Nesting beyond the text format's limit is refused by key path, and a
   /// list nested past what any scene needs before it is decoded at all.
   func testErrors_Nesting() {
-    var object = "<dict><key>type</key><string>Sphere</string>"
+    var object =
+      "<dict><key>type</key><string>Sphere</string>"
       + "<key>center</key><string>0 0 0</string><key>radius</key><string>1</string></dict>"
     for _ in 0..<SceneParser.maximumGroupDepth {
-      object = "<dict><key>type</key><string>Group</string><key>Group</key><array>"
+      object =
+        "<dict><key>type</key><string>Group</string><key>Group</key><array>"
         + object + "</array></dict>"
     }
     XCTAssertThrowsError(
@@ -280,7 +287,8 @@ final class PlistSceneReaderTests: XCTestCase {
           "Groups and Transforms are nested more than 200 deep") ?? false,
         "\(error)")
     }
-    let deep = String(repeating: "<array>", count: 100_000)
+    let deep =
+      String(repeating: "<array>", count: 100_000)
       + String(repeating: "</array>", count: 100_000)
     XCTAssertThrowsError(
       try read(Self.camera + "<key>Group</key>\(deep)")
@@ -318,13 +326,17 @@ final class PlistSceneReaderTests: XCTestCase {
   func testErrors_MalformedXML() {
     XCTAssertThrowsError(
       try SceneReader.parse(
-        bytes: Array("<?xml version=\"1.0\"?>\n<plist>\n<dict>\n<key>a</key>\n<strin>x</string>\n".utf8),
+        bytes: Array(
+          "<?xml version=\"1.0\"?>\n<plist>\n<dict>\n<key>a</key>\n<strin>x</string>\n"
+            .utf8),
         file: "bad.plist")
     ) { error in
       let description = (error as? SceneError)?.description ?? ""
       XCTAssertTrue(
-        description.hasPrefix("bad.plist:") && description.contains(
-          "error: not a valid property list"), description)
+        description.hasPrefix("bad.plist:")
+          && description.contains(
+            "error: not a valid property list"),
+        description)
       XCTAssertFalse(description.contains("\n"))
     }
   }
@@ -334,8 +346,10 @@ final class PlistSceneReaderTests: XCTestCase {
     let xml = plist(
       Self.camera
         + "<key>Group</key><array><dict><key>type</key><string>Sphere</string>"
-        + "<key>center</key><string>0 0 0</string><key>radius</key><string>1</string></dict></array>")
-    let tree = try PropertyListSerialization.propertyList(from: Data(xml), format: nil)
+        + "<key>center</key><string>0 0 0</string><key>radius</key><string>1</string></dict></array>"
+    )
+    let tree = try PropertyListSerialization.propertyList(
+      from: Data(xml), format: nil)
     let binary = try PropertyListSerialization.data(
       fromPropertyList: tree, format: .binary, options: 0)
     XCTAssertTrue(binary.starts(with: Array("bplist".utf8)))

@@ -30,11 +30,14 @@ final class SceneFormatsTests: XCTestCase {
     let text = try render("\(folder)/\(name).txt", as: type)
     let plist = try render("\(folder)/\(name).plist", as: type)
     XCTAssertEqual(
-      text.depth.map { Double($0).bitPattern }, plist.depth.map { Double($0).bitPattern },
+      text.depth.map { Double($0).bitPattern },
+      plist.depth.map { Double($0).bitPattern },
       "\(name) \(S.self): depth")
     XCTAssertEqual(
       text.normals.flatMap { [$0.x, $0.y, $0.z] }.map { Double($0).bitPattern },
-      plist.normals.flatMap { [$0.x, $0.y, $0.z] }.map { Double($0).bitPattern },
+      plist.normals.flatMap { [$0.x, $0.y, $0.z] }.map {
+        Double($0).bitPattern
+      },
       "\(name) \(S.self): normals")
     XCTAssertEqual(
       text.color.flatMap { [$0.x, $0.y, $0.z] }.map { Double($0).bitPattern },

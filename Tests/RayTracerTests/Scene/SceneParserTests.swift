@@ -235,7 +235,9 @@ final class SceneParserTests: XCTestCase {
       .appendingPathComponent("raytrace-bytes-\(UUID().uuidString)").path
     var generator = SplitMix64(seed: 0xF17E)
     for count in [0, 1, 65_536, 200_003] {
-      let bytes = (0..<count).map { _ in UInt8(truncatingIfNeeded: generator.next()) }
+      let bytes = (0..<count).map { _ in
+        UInt8(truncatingIfNeeded: generator.next())
+      }
       try Data(bytes).write(to: URL(fileURLWithPath: path))
       XCTAssertEqual(try readFile(path), bytes, "\(count) bytes")
     }
@@ -243,12 +245,12 @@ final class SceneParserTests: XCTestCase {
   }
 
   #if os(Linux)
-  /// A regular file whose size reads as 0 (as under /proc) is still read
-  /// to its end.
-  func testReadFile_ReadsPastTheReportedSize() throws {
-    let bytes = try readFile("/proc/self/status")
-    XCTAssertTrue(String(decoding: bytes, as: UTF8.self).contains("Name:"))
-  }
+    /// A regular file whose size reads as 0 (as under /proc) is still read
+    /// to its end.
+    func testReadFile_ReadsPastTheReportedSize() throws {
+      let bytes = try readFile("/proc/self/status")
+      XCTAssertTrue(String(decoding: bytes, as: UTF8.self).contains("Name:"))
+    }
   #endif
 
   // MARK: - Malformed scenes
@@ -320,7 +322,8 @@ final class SceneParserTests: XCTestCase {
         line: 3, column: 15, message: "Transform has no object to transform"),
       Malformed(
         name: "Transform with two objects",
-        text: c + "Group { numObjects 1\n  Transform { Translate 1 0 0 \(s) \(s) } }",
+        text: c
+          + "Group { numObjects 1\n  Transform { Translate 1 0 0 \(s) \(s) } }",
         line: 3, column: 64,
         message: "a Transform holds one object; group several in a Group"),
       Malformed(
@@ -337,19 +340,24 @@ final class SceneParserTests: XCTestCase {
         text: c + "Group { numObjects 1 Transform { Translat 1 0 0 \(s) } }",
         line: 2, column: 34,
         message:
-          "expected a transform operation or an object, found 'Translat'; did you mean 'Translate'?"),
+          "expected a transform operation or an object, found 'Translat'; did you mean 'Translate'?"
+      ),
       Malformed(
         name: "TriangleMesh without its file",
         text: c + "Group { numObjects 1 TriangleMesh { } }",
         line: 2, column: 37, message: "TriangleMesh is missing 'obj_file'"),
       Malformed(
         name: "TriangleMesh whose file does not exist",
-        text: c + "Group { numObjects 1 TriangleMesh { obj_file nowhere.obj } }",
+        text: c
+          + "Group { numObjects 1 TriangleMesh { obj_file nowhere.obj } }",
         line: 2, column: 46,
-        message: "cannot read 'nowhere.obj': cannot open the file: No such file or directory"),
+        message:
+          "cannot read 'nowhere.obj': cannot open the file: No such file or directory"
+      ),
       Malformed(
         name: "Triangle missing a vertex",
-        text: c + "Group { numObjects 1 Triangle { vertex0 0 0 0 vertex1 1 0 0 } }",
+        text: c
+          + "Group { numObjects 1 Triangle { vertex0 0 0 0 vertex1 1 0 0 } }",
         line: 2, column: 61, message: "Triangle is missing 'vertex2'"),
       Malformed(
         name: "OrthographicCamera", text: "OrthographicCamera { }", line: 1,
@@ -700,14 +708,20 @@ final class SceneParserTests: XCTestCase {
     ]
     for index in 0..<60 {
       switch index {
-      case 5: lines.append("  Group { numObjects 1 Sphere { center 0 0 1 radius 2 } }")
-      case 8: lines.append("  Transform { Translate 1 0 0 Sphere { radius 1 center 0 0 0 } }")
+      case 5:
+        lines.append(
+          "  Group { numObjects 1 Sphere { center 0 0 1 radius 2 } }")
+      case 8:
+        lines.append(
+          "  Transform { Translate 1 0 0 Sphere { radius 1 center 0 0 0 } }")
       case 10: lines.append("  Plane { normal 0 1 0 offset -2 }")
       case 12: lines.append("  MaterialIndex 2  # a comment {")
       case 45: lines.append("  MaterialIndex 0")
       case 50: lines.append("  # Sphere { center")
       default:
-        lines.append("  Sphere { center \(index) -\(index).5 0.25  radius 0.\(index + 1) }")
+        lines.append(
+          "  Sphere { center \(index) -\(index).5 0.25  radius 0.\(index + 1) }"
+        )
       }
     }
     lines.append("}")

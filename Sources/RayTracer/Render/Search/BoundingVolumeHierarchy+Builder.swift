@@ -384,7 +384,8 @@ extension BoundingVolumeHierarchy {
           front += 1 - isLeft(index)
         }
         var back = 0
-        for index in stride(from: range.upperBound - 1, through: middle, by: -1) {
+        for index in stride(from: range.upperBound - 1, through: middle, by: -1)
+        {
           misplaced[swaps + back] = Int32(truncatingIfNeeded: index)
           back += isLeft(index)
         }

@@ -31,7 +31,9 @@ extension BoundingVolumeHierarchy {
     _ ray: CameraRay<Scalar>, before tMax: Scalar,
     records: UnsafeBufferPointer<Kernel.SphereRecord>, kernel: Kernel.Type
   ) -> (t: Scalar, index: Int)? where Kernel.Scalar == Scalar {
-    nearest(ray, before: tMax, leaves: SphereLeaves<Kernel>(records: records, ray: ray))
+    nearest(
+      ray, before: tMax,
+      leaves: SphereLeaves<Kernel>(records: records, ray: ray))
   }
 
   /// The nearest hit in (0, tMax) among primitives tested by `leaves`,

@@ -103,8 +103,6 @@ public struct BoundingVolumeHierarchy<Scalar: RayScalar>: Sendable {
   }
 }
 
-
-
 extension BoundingVolumeHierarchy {
   /// The hierarchy over `spheres` as the kernel stores them, for rays from
   /// `rayOrigin` in the kernel's frame (`Kernel.frameOrigin(eye:)`).

@@ -6,13 +6,16 @@ struct PixelBox: Sendable, Equatable {
   var firstRow: Int32
   var lastRow: Int32
 
-  static let empty = PixelBox(firstColumn: 0, lastColumn: -1, firstRow: 0, lastRow: -1)
+  static let empty = PixelBox(
+    firstColumn: 0, lastColumn: -1, firstRow: 0, lastRow: -1)
 
   var isEmpty: Bool { firstColumn > lastColumn || firstRow > lastRow }
   /// Only for boxes that are not empty.
   var columns: ClosedRange<Int> { Int(firstColumn)...Int(lastColumn) }
   var rows: ClosedRange<Int> { Int(firstRow)...Int(lastRow) }
-  var area: Int { Int(lastColumn - firstColumn + 1) * Int(lastRow - firstRow + 1) }
+  var area: Int {
+    Int(lastColumn - firstColumn + 1) * Int(lastRow - firstRow + 1)
+  }
 }
 
 /// The pixels whose camera rays may come within a distance of a point.
@@ -40,15 +43,22 @@ struct ScreenProjection: Sendable {
     let crossR3Squared: Double
   }
 
-  init(camera: PerspectiveCamera<Double>, width: Int, height: Int, style: ImageStyle) {
+  init(
+    camera: PerspectiveCamera<Double>, width: Int, height: Int,
+    style: ImageStyle
+  ) {
     let aspect = Double(height) / Double(width)
-    let (u, v, w) = (camera.horizontal, camera.up * aspect, camera.direction * camera.focalDistance)
+    let (u, v, w) = (
+      camera.horizontal, camera.up * aspect,
+      camera.direction * camera.focalDistance
+    )
     let determinant = u.dot(v.cross(w))
     let r1 = v.cross(w) / determinant
     let r2 = w.cross(u) / determinant
     r3 = u.cross(v) / determinant
     condition =
-      Swift.max(u.length, v.length, w.length) * Swift.max(r1.length, r2.length, r3.length)
+      Swift.max(u.length, v.length, w.length)
+      * Swift.max(r1.length, r2.length, r3.length)
     r3Length = r3.length
     r3LengthSquared = r3.lengthSquared
     let r3 = r3
@@ -62,7 +72,8 @@ struct ScreenProjection: Sendable {
     self.height = height
     self.style = style
     whole = PixelBox(
-      firstColumn: 0, lastColumn: Int32(width - 1), firstRow: 0, lastRow: Int32(height - 1))
+      firstColumn: 0, lastColumn: Int32(width - 1), firstRow: 0,
+      lastRow: Int32(height - 1))
   }
 
   /// The pixels whose rays may pass within `reach` of `center` (relative
@@ -77,7 +88,9 @@ struct ScreenProjection: Sendable {
     // With r₃·p ≥ 2ρ|r₃| the ball is at most 30° wide seen from that
     // plane, A below stays within [3/4, 1]·(r₃·p)², and every quantity is
     // a sum of terms of known size (`Λ`).
-    guard p3 >= 2 * ρ * n3, p3.isFinite, ρ.isFinite, p.isFinite else { return whole }
+    guard p3 >= 2 * ρ * n3, p3.isFinite, ρ.isFinite, p.isFinite else {
+      return whole
+    }
     // Shared by both axes: A, 1/A, 1/P₃ and |p| + ρ (one division each
     // rather than one per axis; the extra rounding is far inside the pad).
     let shared = IntervalTerms(
@@ -91,10 +104,12 @@ struct ScreenProjection: Sendable {
     // widest precision a render takes (Float), times the pixels per
     // screen unit, covers that with room for this Double arithmetic.
     let columns = (
-      style.column(screenX: x.lower, width: width), style.column(screenX: x.upper, width: width)
+      style.column(screenX: x.lower, width: width),
+      style.column(screenX: x.upper, width: width)
     )
     let rows = (
-      style.row(screenY: y.upper, height: height), style.row(screenY: y.lower, height: height)
+      style.row(screenY: y.upper, height: height),
+      style.row(screenY: y.lower, height: height)
     )
     let padColumns = 4 * Double(Float.ulpOfOne) * Double(width) + 0x1p-30
     let padRows = 4 * Double(Float.ulpOfOne) * Double(height) + 0x1p-30
@@ -102,10 +117,14 @@ struct ScreenProjection: Sendable {
       Int32(Swift.min(Swift.max(value, -1), Double(limit)))
     }
     let box = PixelBox(
-      firstColumn: Swift.max(0, clamped((columns.0 - padColumns).rounded(.up), width)),
-      lastColumn: Swift.min(Int32(width - 1), clamped((columns.1 + padColumns).rounded(.down), width)),
+      firstColumn: Swift.max(
+        0, clamped((columns.0 - padColumns).rounded(.up), width)),
+      lastColumn: Swift.min(
+        Int32(width - 1),
+        clamped((columns.1 + padColumns).rounded(.down), width)),
       firstRow: Swift.max(0, clamped((rows.0 - padRows).rounded(.up), height)),
-      lastRow: Swift.min(Int32(height - 1), clamped((rows.1 + padRows).rounded(.down), height)))
+      lastRow: Swift.min(
+        Int32(height - 1), clamped((rows.1 + padRows).rounded(.down), height)))
     return box.isEmpty ? .empty : box
   }
 
@@ -146,14 +165,16 @@ struct ScreenProjection: Sendable {
     let pi = ri.dot(p)
     let b = pi * p3 - ρ * ρ * axis.dotR3
     let tangent = ri * p3 - r3 * pi
-    let discriminant = Swift.max(0, tangent.lengthSquared - ρ * ρ * axis.crossR3Squared)
+    let discriminant = Swift.max(
+      0, tangent.lengthSquared - ρ * ρ * axis.crossR3Squared)
     let s = ρ * discriminant.squareRoot()
     let lower = (b - s) * terms.inverseA
     let upper = (b + s) * terms.inverseA
     // Λ: |Pᵢ|/P₃ is the centre's screen coordinate, |p|·|rᵢ|/P₃ bounds the
     // error of Pᵢ and P₃ in screen units, and ρ/P₃ times the rows the
     // ball's angular size.
-    let scale = (pi.magnitude + terms.extent * (axis.length + r3Length)) * terms.inverseP3
+    let scale =
+      (pi.magnitude + terms.extent * (axis.length + r3Length)) * terms.inverseP3
     let pad = 0x1p-30 * condition * (1 + scale + scale * scale)
     guard lower.isFinite, upper.isFinite, pad.isFinite else { return nil }
     return (lower - pad, upper + pad)

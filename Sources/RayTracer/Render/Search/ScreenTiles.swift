@@ -77,13 +77,17 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
       camera: PerspectiveCamera<Double>(camera), width: width, height: height,
       style: settings.style)
     let count = scene.spheres.count
-    let parts = count >= 1 << 14 ? Swift.max(1, Swift.min(settings.threads, 2)) : 1
+    let parts =
+      count >= 1 << 14 ? Swift.max(1, Swift.min(settings.threads, 2)) : 1
     // Pass one: each sphere's box, and per part how many entries each tile
     // gets from it, so that pass two writes every entry straight into place.
     var tileCounts = [[Int32]](repeating: [], count: parts)
     var covered = [Int](repeating: 0, count: parts)
-    let (tilesAcross, tileWidth, tileHeight) = (tilesAcross, Self.tileWidth, Self.tileHeight)
-    let boxes = [PixelBox](unsafeUninitializedCapacity: count) { boxes, initialized in
+    let (tilesAcross, tileWidth, tileHeight) = (
+      tilesAcross, Self.tileWidth, Self.tileHeight
+    )
+    let boxes = [PixelBox](unsafeUninitializedCapacity: count) {
+      boxes, initialized in
       Memory.adviseHugePages(UnsafeMutableRawBufferPointer(boxes))
       scene.spheres.withUnsafeBufferPointer { records in
         let shared = Shared((records, boxes))
@@ -100,9 +104,13 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
             (boxes.baseAddress! + index).initialize(to: box)
             guard !box.isEmpty else { continue }
             area += box.area
-            for tileRow in box.rows.lowerBound / tileHeight...box.rows.upperBound / tileHeight {
+            for tileRow in box.rows.lowerBound / tileHeight...box.rows
+              .upperBound / tileHeight
+            {
               let base = tileRow * tilesAcross
-              for tileColumn in box.columns.lowerBound / tileWidth...box.columns.upperBound / tileWidth {
+              for tileColumn in box.columns.lowerBound / tileWidth...box.columns
+                .upperBound / tileWidth
+              {
                 counts[base + tileColumn] += 1
               }
             }
@@ -117,10 +125,12 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
       initialized = count
     }
     coveredPixels = covered.reduce(0, +)
-    guard Double(coveredPixels) <= Double(overlapLimit) * Double(width * height) else { return nil }
+    guard Double(coveredPixels) <= Double(overlapLimit) * Double(width * height)
+    else { return nil }
     // Tile by tile, part 0's entries before part 1's: scene order.
     var starts = [Int](repeating: 0, count: tileCount + 1)
-    var cursors = [[Int]](repeating: [Int](repeating: 0, count: tileCount), count: parts)
+    var cursors = [[Int]](
+      repeating: [Int](repeating: 0, count: tileCount), count: parts)
     var total = 0
     for tile in 0..<tileCount {
       starts[tile] = total
@@ -136,40 +146,49 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
     // memory would outgrow the render's own buffers: the hierarchy then.
     guard total <= 2 * (width * height + count) else { return nil }
     self.starts = starts
-    entries = Array(unsafeUninitializedCapacity: total) { entries, initialized in
+    entries = Array(unsafeUninitializedCapacity: total) {
+      entries, initialized in
       Memory.adviseHugePages(UnsafeMutableRawBufferPointer(entries))
       let shared = Shared((entries, cursors))
       boxes.withUnsafeBufferPointer { boxes in
         scene.spheres.withUnsafeBufferPointer { records in
-        let boxesAndRecords = Shared((boxes, records))
-        Parallel.inParts(count, parts) { part, range in
-          let (entries, cursors) = shared.value
-          let (boxes, records) = boxesAndRecords.value
-          var cursor = cursors[part]
-          for index in range {
-            let box = boxes[index]
-            guard !box.isEmpty else { continue }
-            let (columns, rows) = (box.columns, box.rows)
-            for tileRow in rows.lowerBound / tileHeight...rows.upperBound / tileHeight {
-              let top = tileRow * tileHeight
-              let rowsInTile = (
-                UInt8(Swift.max(rows.lowerBound, top) - top),
-                UInt8(Swift.min(rows.upperBound, top + tileHeight - 1) - top)
-              )
-              for tileColumn in columns.lowerBound / tileWidth...columns.upperBound / tileWidth {
-                let left = tileColumn * tileWidth
-                let tile = tileRow * tilesAcross + tileColumn
-                (entries.baseAddress! + cursor[tile]).initialize(
-                  to: Entry(
-                    record: records[index], sphere: Int32(truncatingIfNeeded: index),
-                    firstColumn: UInt16(Swift.max(columns.lowerBound, left) - left),
-                    lastColumn: UInt16(Swift.min(columns.upperBound, left + tileWidth - 1) - left),
-                    firstRow: rowsInTile.0, lastRow: rowsInTile.1))
-                cursor[tile] += 1
+          let boxesAndRecords = Shared((boxes, records))
+          Parallel.inParts(count, parts) { part, range in
+            let (entries, cursors) = shared.value
+            let (boxes, records) = boxesAndRecords.value
+            var cursor = cursors[part]
+            for index in range {
+              let box = boxes[index]
+              guard !box.isEmpty else { continue }
+              let (columns, rows) = (box.columns, box.rows)
+              for tileRow in rows.lowerBound / tileHeight...rows.upperBound
+                / tileHeight
+              {
+                let top = tileRow * tileHeight
+                let rowsInTile = (
+                  UInt8(Swift.max(rows.lowerBound, top) - top),
+                  UInt8(Swift.min(rows.upperBound, top + tileHeight - 1) - top)
+                )
+                for tileColumn in columns.lowerBound / tileWidth...columns
+                  .upperBound / tileWidth
+                {
+                  let left = tileColumn * tileWidth
+                  let tile = tileRow * tilesAcross + tileColumn
+                  (entries.baseAddress! + cursor[tile]).initialize(
+                    to: Entry(
+                      record: records[index],
+                      sphere: Int32(truncatingIfNeeded: index),
+                      firstColumn: UInt16(
+                        Swift.max(columns.lowerBound, left) - left),
+                      lastColumn: UInt16(
+                        Swift.min(columns.upperBound, left + tileWidth - 1)
+                          - left),
+                      firstRow: rowsInTile.0, lastRow: rowsInTile.1))
+                  cursor[tile] += 1
+                }
               }
             }
           }
-        }
         }
       }
       initialized = total

@@ -70,7 +70,9 @@ struct WideHierarchy<Scalar: RayScalar>: Sendable {
   /// wide tree is no deeper than the binary one, whose depth is below 64.
   static var stackCapacity: Int { 256 }
   /// 1 + 8γ₃ in Float, rounded up well beyond the three roundings.
-  static var exitScale: Float { 1 + 8 * (3 * Float.ulpOfOne / 2) / (1 - 3 * Float.ulpOfOne / 2) }
+  static var exitScale: Float {
+    1 + 8 * (3 * Float.ulpOfOne / 2) / (1 - 3 * Float.ulpOfOne / 2)
+  }
   static var underflowSlack: Float { 0x1p-100 }
 
   /// The hierarchy for rays from `rayOrigin` (in the binary hierarchy's
@@ -86,7 +88,8 @@ struct WideHierarchy<Scalar: RayScalar>: Sendable {
     for node in binary.nodes {
       let lower = node.lower - rayOrigin
       let upper = node.upper - rayOrigin
-      guard fits(lower.x), fits(lower.y), fits(lower.z), fits(upper.x), fits(upper.y),
+      guard fits(lower.x), fits(lower.y), fits(lower.z), fits(upper.x),
+        fits(upper.y),
         fits(upper.z)
       else { return nil }
     }
@@ -104,7 +107,8 @@ struct WideHierarchy<Scalar: RayScalar>: Sendable {
   /// nested function capturing `wide` it paid an exclusivity check on
   /// every access, a tenth of compiling 10⁶ spheres.
   private static func collapse(
-    _ index: Int, _ binaryNodes: UnsafeBufferPointer<BoundingVolumeHierarchy<Scalar>.Node>,
+    _ index: Int,
+    _ binaryNodes: UnsafeBufferPointer<BoundingVolumeHierarchy<Scalar>.Node>,
     rayOrigin: Vector3<Scalar>, into wide: inout [Node]
   ) -> Int32 {
     let node = binaryNodes[index]
@@ -181,7 +185,8 @@ struct WideHierarchy<Scalar: RayScalar>: Sendable {
   ) -> Answer where Leaves.Scalar == Scalar {
     let d = ray.direction
     let floor = Self.directionFloor
-    guard d.x == 0 || d.x.magnitude >= floor, d.y == 0 || d.y.magnitude >= floor,
+    guard d.x == 0 || d.x.magnitude >= floor,
+      d.y == 0 || d.y.magnitude >= floor,
       d.z == 0 || d.z.magnitude >= floor
     else { return .unsuitable }
     let inverseX = 1 / Float(d.x)
@@ -202,8 +207,11 @@ struct WideHierarchy<Scalar: RayScalar>: Sendable {
     var best = -1
     var bestOriginal = Int32.max
 
-    withUnsafeTemporaryAllocation(of: Int32.self, capacity: Self.stackCapacity) { stackNodes in
-      withUnsafeTemporaryAllocation(of: Float.self, capacity: Self.stackCapacity) { stackEntries in
+    withUnsafeTemporaryAllocation(of: Int32.self, capacity: Self.stackCapacity)
+    { stackNodes in
+      withUnsafeTemporaryAllocation(
+        of: Float.self, capacity: Self.stackCapacity
+      ) { stackEntries in
         nodes.withUnsafeBufferPointer { nodes in
           order.withUnsafeBufferPointer { order in
             var current = root
@@ -213,7 +221,9 @@ struct WideHierarchy<Scalar: RayScalar>: Sendable {
                 let leaf = ~current
                 let first = Int(leaf >> 3)
                 for position in first..<(first + Int(leaf & 7)) {
-                  guard let t = leaves.intersect(position, before: limit) else { continue }
+                  guard let t = leaves.intersect(position, before: limit) else {
+                    continue
+                  }
                   let original = order[position]
                   if t < tBest || (t == tBest && original < bestOriginal) {
                     tBest = t

@@ -53,7 +53,8 @@ final class BoundingVolumeHierarchyTests: XCTestCase {
     ) -> (t: Scalar, index: Int)? {
       let hit = ordered.withUnsafeBufferPointer {
         hierarchy.nearest(
-          ray, before: tMax, leaves: SphereLeaves<Kernel>(records: $0, ray: ray), wide: wide)
+          ray, before: tMax,
+          leaves: SphereLeaves<Kernel>(records: $0, ray: ray), wide: wide)
       }
       return hit.map { ($0.t, Int(hierarchy.order[$0.index])) }
     }
@@ -679,7 +680,8 @@ final class BoundingVolumeHierarchyTests: XCTestCase {
     typealias Kernel = StableKernel<Double>
     var generator = SplitMix64(seed: 0x5FE)
     let spheres = (0..<5000).map { index -> Sphere<Double> in
-      let center = generator.unitVector(Double.self) * generator.logUniform(1, 100)
+      let center =
+        generator.unitVector(Double.self) * generator.logUniform(1, 100)
       return Sphere(
         center: center, radius: generator.logUniform(0.01, 2), materialIndex: 0)
     }
@@ -715,7 +717,9 @@ final class BoundingVolumeHierarchyTests: XCTestCase {
     // Coordinates from a few values, zeros of both signs among them, so
     // that bins see many equal values.
     let values: [Float] = [-0.0, 0.0, 1, -1, 2.5, 0.0, -0.0]
-    func pick() -> Float { values[Int(generator.next() % UInt64(values.count))] }
+    func pick() -> Float {
+      values[Int(generator.next() % UInt64(values.count))]
+    }
     for count in [1, 2, 63, 64, 65, 66, 67, 200, 1001] {
       var primitives = (0..<count).map { index -> BVH.Primitive in
         let lower = Vector3(pick(), pick(), pick())
@@ -743,8 +747,10 @@ final class BoundingVolumeHierarchyTests: XCTestCase {
         }
       }
       func bits(_ bounds: BVH.Bounds) -> [UInt32] {
-        [bounds.lower.x, bounds.lower.y, bounds.lower.z, bounds.upper.x,
-         bounds.upper.y, bounds.upper.z].map(\.bitPattern)
+        [
+          bounds.lower.x, bounds.lower.y, bounds.lower.z, bounds.upper.x,
+          bounds.upper.y, bounds.upper.z,
+        ].map(\.bitPattern)
       }
       for bin in 0..<binning.count {
         XCTAssertEqual(onePass[bin].count, blocks[bin].count, "\(count) \(bin)")

@@ -19,16 +19,21 @@ final class ScreenTilesTests: XCTestCase {
     let compiled = CompiledScene<Kernel>(
       scene, hierarchyThreshold: search == .hierarchy ? 0 : .max,
       projectionThreshold: search == .screenTiles ? 0 : .max)
-    return Renderer.renderReportingSearch(compiled, settings: settings, overlapLimit: overlapLimit)
+    return Renderer.renderReportingSearch(
+      compiled, settings: settings, overlapLimit: overlapLimit)
   }
 
   /// The number of pixels where the two renders differ in any output.
-  func differences<S: RayScalar>(_ a: RenderBuffers<S>, _ b: RenderBuffers<S>) -> Int {
+  func differences<S: RayScalar>(_ a: RenderBuffers<S>, _ b: RenderBuffers<S>)
+    -> Int
+  {
     var count = 0
     for pixel in 0..<(a.width * a.height) {
       var same = true
       if !a.depth.isEmpty { same = same && a.depth[pixel] == b.depth[pixel] }
-      if !a.normals.isEmpty { same = same && a.normals[pixel] == b.normals[pixel] }
+      if !a.normals.isEmpty {
+        same = same && a.normals[pixel] == b.normals[pixel]
+      }
       if !a.color.isEmpty { same = same && a.color[pixel] == b.color[pixel] }
       if !same { count += 1 }
     }
@@ -42,15 +47,18 @@ final class ScreenTilesTests: XCTestCase {
     _ label: String, file: StaticString = #filePath, line: UInt = #line
   ) {
     let projected = render(kernel, scene, settings, .screenTiles)
-    XCTAssertEqual(projected.search, .screenTiles, label, file: file, line: line)
+    XCTAssertEqual(
+      projected.search, .screenTiles, label, file: file, line: line)
     let tree = render(kernel, scene, settings, .hierarchy)
     XCTAssertEqual(
-      differences(projected.buffers, tree.buffers), 0, "\(label) against the BVH",
+      differences(projected.buffers, tree.buffers), 0,
+      "\(label) against the BVH",
       file: file, line: line)
     if scene.root.flattened().spheres.count < 400 {
       let culled = render(kernel, scene, settings, .culledPerTile)
       XCTAssertEqual(
-        differences(projected.buffers, culled.buffers), 0, "\(label) against culling",
+        differences(projected.buffers, culled.buffers), 0,
+        "\(label) against culling",
         file: file, line: line)
     }
   }
@@ -62,7 +70,8 @@ final class ScreenTilesTests: XCTestCase {
   /// mit style's vertical axis is not perpendicular to the view).
   func randomScene(_ generator: inout SplitMix64, count: Int) -> Scene? {
     let size: Double = generator.logUniform(1e-2, 1e4)
-    let center = generator.unitVector(Double.self) * generator.logUniform(1, 1e6)
+    let center =
+      generator.unitVector(Double.self) * generator.logUniform(1, 1e6)
     var spheres: [Sphere<Double>] = []
     for index in 0..<count {
       if index > 0 && Int.random(in: 0..<8, using: &generator) == 0 {
@@ -81,9 +90,11 @@ final class ScreenTilesTests: XCTestCase {
           materialIndex: Int.random(in: 0..<3, using: &generator)))
     }
     let away: Double =
-      Bool.random(using: &generator) ? generator.logUniform(0.3, 1e3) : generator.uniform(0...0.3)
+      Bool.random(using: &generator)
+      ? generator.logUniform(0.3, 1e3) : generator.uniform(0...0.3)
     let eye = center + generator.unitVector(Double.self) * (away * size)
-    let target = spheres[Int.random(in: spheres.indices, using: &generator)].center
+    let target = spheres[Int.random(in: spheres.indices, using: &generator)]
+      .center
     let up = generator.unitVector(Double.self)
     guard
       let camera = PerspectiveCamera<Double>(
@@ -92,21 +103,29 @@ final class ScreenTilesTests: XCTestCase {
     else { return nil }
     var objects = spheres.map { SceneObject<Double>.sphere($0) }
     if Bool.random(using: &generator) {
-      objects.append(.plane(Plane(normal: generator.unitVector(), offset: center.y)))
+      objects.append(
+        .plane(Plane(normal: generator.unitVector(), offset: center.y)))
     }
     return Scene(
       camera: camera,
-      lights: [.directional(direction: Vector3(-1, -2, -3), color: Vector3(1, 1, 1))],
+      lights: [
+        .directional(direction: Vector3(-1, -2, -3), color: Vector3(1, 1, 1))
+      ],
       materials: [
-        Material(diffuse: Vector3(1, 0, 0)), Material(diffuse: Vector3(0, 1, 0)),
+        Material(diffuse: Vector3(1, 0, 0)),
+        Material(diffuse: Vector3(0, 1, 0)),
         Material(diffuse: Vector3(0, 0, 1)),
       ],
       root: Group(objects))
   }
 
-  func checkRandomScenes<Kernel: IntersectionKernel>(_ kernel: Kernel.Type, base: UInt64) {
+  func checkRandomScenes<Kernel: IntersectionKernel>(
+    _ kernel: Kernel.Type, base: UInt64
+  ) {
     forEachSeed(12, base: base) { generator, _ in
-      guard let scene = randomScene(&generator, count: Int.random(in: 1...120, using: &generator))
+      guard
+        let scene = randomScene(
+          &generator, count: Int.random(in: 1...120, using: &generator))
       else { return }
       for style in ImageStyle.allCases {
         // Sizes that are not multiples of a tile, and single rows and columns.
@@ -115,27 +134,43 @@ final class ScreenTilesTests: XCTestCase {
             width: width, height: height, outputs: [.depth, .normals, .shaded],
             style: style, threads: 2)
           settings.projectionThreshold = 0
-          assertSameImages(kernel, scene, settings, "\(Kernel.self) \(style) \(width)×\(height)")
+          assertSameImages(
+            kernel, scene, settings,
+            "\(Kernel.self) \(style) \(width)×\(height)")
         }
       }
     }
   }
 
-  func testRandomScenes_StableDouble() { checkRandomScenes(StableKernel<Double>.self, base: 0x5C1) }
-  func testRandomScenes_StableFloat() { checkRandomScenes(StableKernel<Float>.self, base: 0x5C2) }
-  func testRandomScenes_NaiveDouble() { checkRandomScenes(NaiveKernel<Double>.self, base: 0x5C3) }
-  func testRandomScenes_NaiveFloat() { checkRandomScenes(NaiveKernel<Float>.self, base: 0x5C4) }
+  func testRandomScenes_StableDouble() {
+    checkRandomScenes(StableKernel<Double>.self, base: 0x5C1)
+  }
+  func testRandomScenes_StableFloat() {
+    checkRandomScenes(StableKernel<Float>.self, base: 0x5C2)
+  }
+  func testRandomScenes_NaiveDouble() {
+    checkRandomScenes(NaiveKernel<Double>.self, base: 0x5C3)
+  }
+  func testRandomScenes_NaiveFloat() {
+    checkRandomScenes(NaiveKernel<Float>.self, base: 0x5C4)
+  }
 
   /// The stiff suite's tiny far spheres, planets, grazing and inside views.
   func testStiffScenes_SameImages() throws {
     for name in StiffSuiteTests.scenes {
-      let scene = try SceneParser.parse(contentsOf: "\(StiffSuiteTests.stiffFolder)/\(name).txt")
+      let scene = try SceneParser.parse(
+        contentsOf: "\(StiffSuiteTests.stiffFolder)/\(name).txt")
       for style in ImageStyle.allCases {
         let settings = RenderSettings(
-          width: 48, height: 36, outputs: [.depth, .normals, .shaded], style: style, threads: 2)
-        assertSameImages(StableKernel<Double>.self, scene, settings, "\(name) \(style) double")
-        assertSameImages(StableKernel<Float>.self, scene, settings, "\(name) \(style) float")
-        assertSameImages(NaiveKernel<Float>.self, scene, settings, "\(name) \(style) naive float")
+          width: 48, height: 36, outputs: [.depth, .normals, .shaded],
+          style: style, threads: 2)
+        assertSameImages(
+          StableKernel<Double>.self, scene, settings, "\(name) \(style) double")
+        assertSameImages(
+          StableKernel<Float>.self, scene, settings, "\(name) \(style) float")
+        assertSameImages(
+          NaiveKernel<Float>.self, scene, settings,
+          "\(name) \(style) naive float")
       }
     }
   }
@@ -145,40 +180,54 @@ final class ScreenTilesTests: XCTestCase {
   /// sizes over many binades: where the kernels' rounding decides hit or
   /// miss, so a box computed for the bare radius would lose pixels.
   func grazingSpheres(
-    _ generator: inout SplitMix64, camera: PerspectiveCamera<Double>, style: ImageStyle,
+    _ generator: inout SplitMix64, camera: PerspectiveCamera<Double>,
+    style: ImageStyle,
     width: Int, height: Int, count: Int
   ) -> [Sphere<Double>] {
     let aspect = Double(height) / Double(width)
     return (0..<count).map { _ in
-      let x: Double = style.screenX(column: Int.random(in: 0..<width, using: &generator), width: width)
-      let y: Double = style.screenY(row: Int.random(in: 0..<height, using: &generator), height: height)
-      let direction = camera.styled(style).rayDirection(x: x, y: y, aspect: aspect).normalized()
-      let across = direction.cross(generator.unitVector(Double.self)).normalized()
+      let x: Double = style.screenX(
+        column: Int.random(in: 0..<width, using: &generator), width: width)
+      let y: Double = style.screenY(
+        row: Int.random(in: 0..<height, using: &generator), height: height)
+      let direction = camera.styled(style).rayDirection(
+        x: x, y: y, aspect: aspect
+      ).normalized()
+      let across = direction.cross(generator.unitVector(Double.self))
+        .normalized()
       let distance: Double = generator.logUniform(1e-2, 1e7)
       let radius = distance * generator.logUniform(1e-7, 0.5)
-      let miss = 1 + Double.random(in: -64...64, using: &generator) * Double(Float.ulpOfOne)
+      let miss =
+        1 + Double.random(in: -64...64, using: &generator)
+        * Double(Float.ulpOfOne)
       return Sphere(
-        center: camera.center + direction * distance + across * (radius * miss), radius: radius)
+        center: camera.center + direction * distance + across * (radius * miss),
+        radius: radius)
     }
   }
 
   /// The property the images rest on, sphere by sphere and without the
   /// help of nearer spheres hiding a mistake: every pixel whose ray the
   /// kernel reports hitting the sphere is in the sphere's box.
-  func checkBoxesHoldEveryHit<Kernel: IntersectionKernel>(_: Kernel.Type, base: UInt64) {
+  func checkBoxesHoldEveryHit<Kernel: IntersectionKernel>(
+    _: Kernel.Type, base: UInt64
+  ) {
     forEachSeed(10, base: base) { generator, _ in
       guard var scene = randomScene(&generator, count: 60) else { return }
       let (width, height) = (33, 27)
       for style in ImageStyle.allCases {
         let grazing = grazingSpheres(
-          &generator, camera: scene.camera, style: style, width: width, height: height, count: 60)
+          &generator, camera: scene.camera, style: style, width: width,
+          height: height, count: 60)
         scene.root = Group(scene.root.objects + grazing.map { .sphere($0) })
       }
       let compiled = CompiledScene<Kernel>(scene, projectionThreshold: 0)
       for style in ImageStyle.allCases {
-        let camera = PerspectiveCamera<Kernel.Scalar>(compiled.camera).styled(style)
+        let camera = PerspectiveCamera<Kernel.Scalar>(compiled.camera).styled(
+          style)
         let projection = ScreenProjection(
-          camera: PerspectiveCamera<Double>(camera), width: width, height: height, style: style)
+          camera: PerspectiveCamera<Double>(camera), width: width,
+          height: height, style: style)
         let aspect = Kernel.Scalar(height) / Kernel.Scalar(width)
         var (outside, hits) = (0, 0)
         for record in compiled.spheres {
@@ -190,17 +239,23 @@ final class ScreenTilesTests: XCTestCase {
               let x: Kernel.Scalar = style.screenX(column: column, width: width)
               let ray = CameraRay(
                 origin: compiled.rayOrigin,
-                direction: camera.rayDirection(x: x, rowBase: camera.rowBase(y: y, aspect: aspect)))
-              guard Kernel.intersect(record, ray, before: .infinity) != nil else { continue }
+                direction: camera.rayDirection(
+                  x: x, rowBase: camera.rowBase(y: y, aspect: aspect)))
+              guard Kernel.intersect(record, ray, before: .infinity) != nil
+              else { continue }
               hits += 1
-              if box.isEmpty || !box.columns.contains(column) || !box.rows.contains(row) {
+              if box.isEmpty || !box.columns.contains(column)
+                || !box.rows.contains(row)
+              {
                 outside += 1
               }
             }
           }
         }
         XCTAssertGreaterThan(hits, 0)
-        XCTAssertEqual(outside, 0, "\(Kernel.self) \(style): hits outside their sphere's box")
+        XCTAssertEqual(
+          outside, 0, "\(Kernel.self) \(style): hits outside their sphere's box"
+        )
       }
     }
   }
@@ -223,22 +278,28 @@ final class ScreenTilesTests: XCTestCase {
   func testBox_IsTightForAnOrdinarySphere() {
     guard
       let camera = PerspectiveCamera<Double>(
-        center: .zero, direction: Vector3(0, 0, -1), up: Vector3(0, 1, 0), angle: 90)
+        center: .zero, direction: Vector3(0, 0, -1), up: Vector3(0, 1, 0),
+        angle: 90)
     else { return XCTFail("camera") }
-    let projection = ScreenProjection(camera: camera, width: 100, height: 100, style: .course)
+    let projection = ScreenProjection(
+      camera: camera, width: 100, height: 100, style: .course)
     // Radius 0.1 at distance 10: the silhouette spans tan(asin(0.01)) =
     // 0.0100005 either side of the centre, 0.500025 pixel at 50 pixels per
     // screen unit, about the centre at column 49.5: columns 49 and 50; the
     // course's rows sample one pixel higher, so y = 0 is row 50.5: rows 50
     // and 51.
     let box = projection.pixelBox(center: Vector3(0, 0, -10), reach: 0.1)
-    XCTAssertEqual(box, PixelBox(firstColumn: 49, lastColumn: 50, firstRow: 50, lastRow: 51))
+    XCTAssertEqual(
+      box, PixelBox(firstColumn: 49, lastColumn: 50, firstRow: 50, lastRow: 51))
     // 0.49 pixel either side of 49.5 holds no pixel centre: no pixel.
     let smaller = projection.pixelBox(center: Vector3(0, 0, -10), reach: 0.098)
     XCTAssertTrue(smaller.isEmpty, "\(smaller)")
     // Behind the eye: no pixel. Straddling the eye's plane: every pixel.
-    XCTAssertTrue(projection.pixelBox(center: Vector3(0, 0, 10), reach: 1).isEmpty)
-    XCTAssertEqual(projection.pixelBox(center: Vector3(5, 0, 0.5), reach: 1), projection.whole)
+    XCTAssertTrue(
+      projection.pixelBox(center: Vector3(0, 0, 10), reach: 1).isEmpty)
+    XCTAssertEqual(
+      projection.pixelBox(center: Vector3(5, 0, 0.5), reach: 1),
+      projection.whole)
   }
 
   /// `count` spheres one behind the other on the view's axis, each at
@@ -246,11 +307,14 @@ final class ScreenTilesTests: XCTestCase {
   func sphereStack(_ count: Int, radius: Double) -> Scene? {
     let spheres = (0..<count).map { index in
       SceneObject<Double>.sphere(
-        Sphere(center: Vector3(0, 0, -10 - 3 * Double(index)), radius: radius + Double(index)))
+        Sphere(
+          center: Vector3(0, 0, -10 - 3 * Double(index)),
+          radius: radius + Double(index)))
     }
     guard
       let camera = PerspectiveCamera<Double>(
-        center: .zero, direction: Vector3(0, 0, -1), up: Vector3(0, 1, 0), angle: 30)
+        center: .zero, direction: Vector3(0, 0, -1), up: Vector3(0, 1, 0),
+        angle: 30)
     else { return nil }
     return Scene(camera: camera, root: Group(spheres))
   }
@@ -262,28 +326,34 @@ final class ScreenTilesTests: XCTestCase {
     _ scene: Scene, _ settings: RenderSettings,
     file: StaticString = #filePath, line: UInt = #line
   ) {
-    let compiled = CompiledScene<StableKernel<Double>>(scene, projectionThreshold: 0)
+    let compiled = CompiledScene<StableKernel<Double>>(
+      scene, projectionThreshold: 0)
     let camera = PerspectiveCamera<Double>(compiled.camera)
     XCTAssertNil(
       ScreenTiles(compiled, camera: camera, settings: settings)?.coveredPixels,
-      "covered pixels of tiles that should have declined", file: file, line: line)
+      "covered pixels of tiles that should have declined", file: file,
+      line: line)
     let fallback = render(
       StableKernel<Double>.self, scene, settings, .screenTiles,
       overlapLimit: ScreenTiles<StableKernel<Double>>.overlapLimit)
     XCTAssertEqual(fallback.search, .hierarchy, file: file, line: line)
     let tree = render(StableKernel<Double>.self, scene, settings, .hierarchy)
-    XCTAssertEqual(differences(fallback.buffers, tree.buffers), 0, file: file, line: line)
+    XCTAssertEqual(
+      differences(fallback.buffers, tree.buffers), 0, file: file, line: line)
   }
 
   /// 64 spheres, each filling the view, cover a 40×30 image 64 times:
   /// over the overlap limit. Without the limit the tiles count it exactly.
   func testHeavyOverlap_DeclinesToTheHierarchy() throws {
     let scene = try XCTUnwrap(sphereStack(64, radius: 5))
-    let settings = RenderSettings(width: 40, height: 30, outputs: [.depth, .normals], threads: 2)
+    let settings = RenderSettings(
+      width: 40, height: 30, outputs: [.depth, .normals], threads: 2)
     assertDeclinesToTheHierarchy(scene, settings)
-    let compiled = CompiledScene<StableKernel<Double>>(scene, projectionThreshold: 0)
+    let compiled = CompiledScene<StableKernel<Double>>(
+      scene, projectionThreshold: 0)
     let accepted = ScreenTiles(
-      compiled, camera: PerspectiveCamera<Double>(compiled.camera), settings: settings,
+      compiled, camera: PerspectiveCamera<Double>(compiled.camera),
+      settings: settings,
       overlapLimit: 1000)
     XCTAssertEqual(accepted?.coveredPixels, 64 * 40 * 30)
   }
@@ -295,7 +365,9 @@ final class ScreenTilesTests: XCTestCase {
   func testManyTilesPerSphere_DeclinesToTheHierarchy() throws {
     let scene = try XCTUnwrap(sphereStack(16, radius: 100))
     assertDeclinesToTheHierarchy(
-      scene, RenderSettings(width: 1, height: 4096, outputs: [.depth, .normals], threads: 2))
+      scene,
+      RenderSettings(
+        width: 1, height: 4096, outputs: [.depth, .normals], threads: 2))
   }
 
   /// From 2¹⁴ spheres two threads sort them into tiles, each half of the
@@ -307,29 +379,44 @@ final class ScreenTilesTests: XCTestCase {
     let half = 1 << 13
     var spheres: [Sphere<Double>] = (0..<half).map { _ in
       Sphere(
-        center: Vector3(generator.uniform(-1...1), generator.uniform(-1...1), generator.uniform(-3 ... -1)),
+        center: Vector3(
+          generator.uniform(-1...1), generator.uniform(-1...1),
+          generator.uniform(-3 ... -1)),
         radius: generator.uniform(0.005...0.02), materialIndex: 0)
     }
     // The second half repeats the first with the other material.
-    spheres += spheres.map { Sphere(center: $0.center, radius: $0.radius, materialIndex: 1) }
+    spheres += spheres.map {
+      Sphere(center: $0.center, radius: $0.radius, materialIndex: 1)
+    }
     guard
       let camera = PerspectiveCamera<Double>(
-        center: Vector3(0, 0, 1), direction: Vector3(0, 0, -1), up: Vector3(0, 1, 0), angle: 60)
+        center: Vector3(0, 0, 1), direction: Vector3(0, 0, -1),
+        up: Vector3(0, 1, 0), angle: 60)
     else { return XCTFail("camera") }
     let scene = Scene(
-      camera: camera, materials: [Material(diffuse: Vector3(1, 0, 0)), Material(diffuse: Vector3(0, 1, 0))],
+      camera: camera,
+      materials: [
+        Material(diffuse: Vector3(1, 0, 0)),
+        Material(diffuse: Vector3(0, 1, 0)),
+      ],
       root: Group(spheres.map { .sphere($0) }))
-    let settings = RenderSettings(width: 64, height: 48, outputs: [.shaded], threads: 2)
-    let projected = render(StableKernel<Double>.self, scene, settings, .screenTiles)
+    let settings = RenderSettings(
+      width: 64, height: 48, outputs: [.shaded], threads: 2)
+    let projected = render(
+      StableKernel<Double>.self, scene, settings, .screenTiles)
     XCTAssertEqual(projected.search, .screenTiles)
     let green = projected.buffers.color.filter { $0.y > 0 }.count
-    XCTAssertEqual(green, 0, "pixels showing the later of two coincident spheres")
+    XCTAssertEqual(
+      green, 0, "pixels showing the later of two coincident spheres")
     XCTAssertGreaterThan(projected.buffers.color.filter { $0.x > 0 }.count, 100)
     let tree = render(StableKernel<Double>.self, scene, settings, .hierarchy)
     XCTAssertEqual(differences(projected.buffers, tree.buffers), 0)
     var oneThread = settings
     oneThread.threads = 1
-    let single = render(StableKernel<Double>.self, scene, oneThread, .screenTiles)
-    XCTAssertEqual(differences(projected.buffers, single.buffers), 0, "one thread against two")
+    let single = render(
+      StableKernel<Double>.self, scene, oneThread, .screenTiles)
+    XCTAssertEqual(
+      differences(projected.buffers, single.buffers), 0,
+      "one thread against two")
   }
 }

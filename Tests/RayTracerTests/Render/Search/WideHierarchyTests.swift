@@ -8,12 +8,15 @@ import XCTest
 final class WideHierarchyTests: XCTestCase {
   typealias Fixture = BoundingVolumeHierarchyTests.Fixture
 
-  func randomSpheres(_ count: Int, seed: UInt64, spread: Double = 10) -> [Sphere<Double>] {
+  func randomSpheres(_ count: Int, seed: UInt64, spread: Double = 10)
+    -> [Sphere<Double>]
+  {
     var generator = SplitMix64(seed: seed)
     return (0..<count).map { _ in
       Sphere(
         center: Vector3(
-          generator.uniform(-spread...spread), generator.uniform(-spread...spread),
+          generator.uniform(-spread...spread),
+          generator.uniform(-spread...spread),
           generator.uniform(-spread...spread)),
         radius: generator.uniform(0.05...0.5))
     }
@@ -38,18 +41,25 @@ final class WideHierarchyTests: XCTestCase {
       nodesSeen += 1
       let node = wide.nodes[Int(reference)]
       for lane in 0..<4 {
-        let lower = SIMD3(node.lowerX[lane], node.lowerY[lane], node.lowerZ[lane])
-        let upper = SIMD3(node.upperX[lane], node.upperY[lane], node.upperZ[lane])
+        let lower = SIMD3(
+          node.lowerX[lane], node.lowerY[lane], node.lowerZ[lane])
+        let upper = SIMD3(
+          node.upperX[lane], node.upperY[lane], node.upperZ[lane])
         if lower.x > upper.x {
-          XCTAssertEqual(node.children[lane], 0, "an empty slot", file: file, line: line)
+          XCTAssertEqual(
+            node.children[lane], 0, "an empty slot", file: file, line: line)
           continue
         }
         visit(node.children[lane])
       }
     }
     visit(wide.root)
-    XCTAssertEqual(nodesSeen, wide.nodes.count, "every wide node is reachable", file: file, line: line)
-    XCTAssertEqual(seen, Array(repeating: 1, count: seen.count), "each primitive in one leaf", file: file, line: line)
+    XCTAssertEqual(
+      nodesSeen, wide.nodes.count, "every wide node is reachable", file: file,
+      line: line)
+    XCTAssertEqual(
+      seen, Array(repeating: 1, count: seen.count),
+      "each primitive in one leaf", file: file, line: line)
     // Every binary leaf's box, relative to the origin, lies inside the
     // Float box of the wide child that holds it.
     var leafBoxes: [Int: (lower: SIMD3<Float>, upper: SIMD3<Float>)] = [:]
@@ -64,16 +74,23 @@ final class WideHierarchyTests: XCTestCase {
     }
     for node in binary.nodes where node.isLeaf {
       guard let box = leafBoxes[Int(node.index)] else {
-        XCTFail("leaf at \(node.index) not in the wide hierarchy", file: file, line: line)
+        XCTFail(
+          "leaf at \(node.index) not in the wide hierarchy", file: file,
+          line: line)
         continue
       }
       let lower = node.lower - origin
       let upper = node.upper - origin
-      for (float, exact) in zip([box.lower.x, box.lower.y, box.lower.z], [lower.x, lower.y, lower.z]) {
+      for (float, exact) in zip(
+        [box.lower.x, box.lower.y, box.lower.z], [lower.x, lower.y, lower.z])
+      {
         XCTAssertLessThanOrEqual(Scalar(float), exact, file: file, line: line)
       }
-      for (float, exact) in zip([box.upper.x, box.upper.y, box.upper.z], [upper.x, upper.y, upper.z]) {
-        XCTAssertGreaterThanOrEqual(Scalar(float), exact, file: file, line: line)
+      for (float, exact) in zip(
+        [box.upper.x, box.upper.y, box.upper.z], [upper.x, upper.y, upper.z])
+      {
+        XCTAssertGreaterThanOrEqual(
+          Scalar(float), exact, file: file, line: line)
       }
     }
   }
@@ -83,10 +100,14 @@ final class WideHierarchyTests: XCTestCase {
       let spheres = randomSpheres(count, seed: seed)
       let eye = Vector3<Double>(0.3, 1.7, 30)
       let stable = Fixture<StableKernel<Double>>(spheres, eye: eye)
-      guard let wide = stable.wide else { return XCTFail("declined \(count) spheres") }
+      guard let wide = stable.wide else {
+        return XCTFail("declined \(count) spheres")
+      }
       checkStructure(wide, stable.hierarchy, origin: stable.origin)
       let naive = Fixture<NaiveKernel<Float>>(spheres, eye: eye)
-      guard let wideNaive = naive.wide else { return XCTFail("declined \(count) spheres") }
+      guard let wideNaive = naive.wide else {
+        return XCTFail("declined \(count) spheres")
+      }
       checkStructure(wideNaive, naive.hierarchy, origin: naive.origin)
     }
   }
@@ -104,7 +125,8 @@ final class WideHierarchyTests: XCTestCase {
       return 1 + filled.map { depth(node.children[$0]) }.max()!
     }
     XCTAssertLessThanOrEqual(depth(wide.root), fixture.hierarchy.depth)
-    XCTAssertLessThanOrEqual(3 * fixture.hierarchy.depth + 1, WideHierarchy<Float>.stackCapacity)
+    XCTAssertLessThanOrEqual(
+      3 * fixture.hierarchy.depth + 1, WideHierarchy<Float>.stackCapacity)
   }
 
   /// Faces beyond 2⁶⁰ from the eye could overflow Float's slab distances:
@@ -114,7 +136,9 @@ final class WideHierarchyTests: XCTestCase {
     spheres.append(Sphere(center: Vector3(0x1p61, 0, 0), radius: 1))
     let fixture = Fixture<StableKernel<Double>>(spheres, eye: Vector3(0, 0, 30))
     XCTAssertNil(fixture.wide)
-    fixture.checkMatches([Vector3(0, 0, -1), Vector3(1, 0, 0), Vector3(0.1, 0.2, -1).normalized()])
+    fixture.checkMatches([
+      Vector3(0, 0, -1), Vector3(1, 0, 0), Vector3(0.1, 0.2, -1).normalized(),
+    ])
   }
 
   /// Directions with a component between 0 and 2⁻⁴⁰ are unsuitable; the
@@ -127,9 +151,12 @@ final class WideHierarchyTests: XCTestCase {
     let answer = fixture.ordered.withUnsafeBufferPointer { records in
       wide.nearest(
         fixture.ray(tiny), before: .infinity,
-        leaves: SphereLeaves<StableKernel<Double>>(records: records, ray: fixture.ray(tiny)))
+        leaves: SphereLeaves<StableKernel<Double>>(
+          records: records, ray: fixture.ray(tiny)))
     }
-    guard case .unsuitable = answer else { return XCTFail("answered \(answer)") }
+    guard case .unsuitable = answer else {
+      return XCTFail("answered \(answer)")
+    }
     var directions = [tiny, Vector3(0, 0, -1), Vector3(-0.0, 0x1p-40, -1)]
     var generator = SplitMix64(seed: 7)
     for _ in 0..<400 {
@@ -159,7 +186,8 @@ final class WideHierarchyTests: XCTestCase {
         let radius: Double = generator.uniform(0.1...0.9)
         let inset = radius * (1 - 1e-10)
         var center = Vector3<Double>(
-          eye.x + generator.uniform(-6.0...6.0), eye.y + generator.uniform(-6.0...6.0),
+          eye.x + generator.uniform(-6.0...6.0),
+          eye.y + generator.uniform(-6.0...6.0),
           generator.uniform(-30.0 ... -10.0))
         switch index % 4 {
         case 0: center.x = eye.x - inset
@@ -175,7 +203,8 @@ final class WideHierarchyTests: XCTestCase {
       let fixture = Fixture<Kernel>(spheres, eye: eye)
       XCTAssertNotNil(fixture.wide)
       let hits = fixture.checkMatches(directions, "\(Kernel.self)")
-      XCTAssertGreaterThan(hits, directions.count / 2, "\(Kernel.self): most rays hit")
+      XCTAssertGreaterThan(
+        hits, directions.count / 2, "\(Kernel.self): most rays hit")
     }
     check(StableKernel<Double>.self)
     check(NaiveKernel<Double>.self)

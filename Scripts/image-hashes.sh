@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Renders every project scene, the stiff suite and (when ../shared is beside
+# the checkout) the course's scenes in each precision, method, style and
+# sampling, and prints one line per image: its SHA-256 and how it was made.
+# Compare the output of two builds to show a change leaves images bit for bit:
+#   Scripts/image-hashes.sh .build/release/raytrace > before.txt
+#   ... change, rebuild ...
+#   Scripts/image-hashes.sh .build/release/raytrace | diff before.txt -
+set -euo pipefail
+binary=${1:-.build/release/raytrace}
+cd "$(dirname "$0")/.."
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+
+scenes=(scenes/*.txt scenes/*.plist scenes/stiff/*.txt)
+for reference in ../shared/reference/mit/*.txt \
+  ../shared/reference/course/*.txt \
+  ../shared/reference/swift-course/Scenes/*.plist; do
+  [ -f "$reference" ] && scenes+=("$reference")
+done
+
+render() {
+  local label=$1; shift
+  "$binary" "$@" -o "$out/s.png" --depth "$out/d.pfm" \
+    --normals "$out/n.pfm" 2>/dev/null || { echo "failed  $label"; return; }
+  echo "$(cat "$out/s.png" "$out/d.pfm" "$out/n.pfm" | sha256sum | cut -c1-16)  $label"
+}
+
+for scene in "${scenes[@]}"; do
+  for precision in double float; do
+    for method in stable naive; do
+      render "$scene $precision $method" "$scene" --size 96 80 \
+        --precision "$precision" --intersection "$method"
+    done
+  done
+  render "$scene mit" "$scene" --size 96 80 --style mit
+  render "$scene 16 samples" "$scene" --size 64 48 --samples 16
+  render "$scene 300x300" "$scene" --size 300 300
+done
