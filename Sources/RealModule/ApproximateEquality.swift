@@ -1,6 +1,7 @@
 extension Numeric where Magnitude: FloatingPoint {
   /// Whether `self` and `other` agree within an absolute or a relative
-  /// tolerance: |a − b| ≤ max(absoluteTolerance, relativeTolerance·max(|a|, |b|)).
+  /// tolerance:
+  /// |a − b| ≤ max(absoluteTolerance, relativeTolerance·max(|a|, |b|)).
   ///
   /// Not transitive, so never back `Equatable` with it. Unlike the real
   /// package there is no default relative tolerance: a caller states one, with

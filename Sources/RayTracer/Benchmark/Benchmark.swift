@@ -163,7 +163,8 @@ public struct Benchmark {
       guard outcome.status == 0 else {
         throw Failure(
           description:
-            "\(executable) \(arguments.joined(separator: " ")) failed: \(outcome.stderr)"
+            "\(executable) \(arguments.joined(separator: " ")) failed: "
+            + outcome.stderr
         )
       }
       guard let seconds = Self.renderSeconds(inStats: outcome.stderr) else {

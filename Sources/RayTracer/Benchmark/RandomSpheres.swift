@@ -39,7 +39,8 @@ public enum RandomSpheres {
       let radius = Double.random(in: (largest / 2)...largest, using: &generator)
       let material = Int.random(in: 0..<4, using: &generator)
       groups[material].append(
-        "    Sphere { center \(short(x)) \(short(y)) \(short(z))  radius \(short(radius)) }"
+        "    Sphere { center \(short(x)) \(short(y)) \(short(z))  "
+          + "radius \(short(radius)) }"
       )
     }
     var text = """
@@ -53,17 +54,21 @@ public enum RandomSpheres {
       Lights {
           numLights 2
           DirectionalLight { direction -0.5 -1 -0.7  color 0.7 0.7 0.7 }
-          PointLight { position 10 10 30  color 0.5 0.5 0.5  falloff \(short(1 / (11 * box * box))) }
+          PointLight { position 10 10 30  color 0.5 0.5 0.5
+                       falloff \(short(1 / (11 * box * box))) }
       }
 
       Background { color 0 0 0  ambientLight 0.2 0.2 0.2 }
 
       Materials {
           numMaterials 4
-          Material { diffuseColor 0.8 0.2 0.2  specularColor 0.5 0.5 0.5  shininess 20 }
+          Material { diffuseColor 0.8 0.2 0.2  specularColor 0.5 0.5 0.5
+                     shininess 20 }
           Material { diffuseColor 0.2 0.7 0.2 }
-          Material { diffuseColor 0.2 0.3 0.9  specularColor 0.8 0.8 0.8  shininess 64 }
-          Material { diffuseColor 0.9 0.8 0.3  specularColor 0.3 0.3 0.3  shininess 8 }
+          Material { diffuseColor 0.2 0.3 0.9  specularColor 0.8 0.8 0.8
+                     shininess 64 }
+          Material { diffuseColor 0.9 0.8 0.3  specularColor 0.3 0.3 0.3
+                     shininess 8 }
       }
 
       Group {

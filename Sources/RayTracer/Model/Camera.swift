@@ -3,10 +3,10 @@ import RealModule
 /// A pinhole camera with a horizontal field of view (the course's
 /// `PerspectiveCamera`).
 ///
-/// The basis is w = direction, u = w × up, v = u × w (all unit length): u points
-/// right and v up in the image. A screen point (x, y) in [−1, 1]² maps to the
-/// ray direction x·u + (H/W)·y·v + D·w with D = 1 / tan(angle / 2), normalised,
-/// so that t is a distance.
+/// The basis is w = direction, u = w × up, v = u × w (all unit length): u
+/// points right and v up in the image. A screen point (x, y) in [−1, 1]²
+/// maps to the ray direction x·u + (H/W)·y·v + D·w with
+/// D = 1 / tan(angle / 2), normalised, so that t is a distance.
 public struct PerspectiveCamera<Scalar: RayScalar>: Hashable, Sendable {
   public var center: Vector3<Scalar>
   public var direction: Vector3<Scalar>

@@ -24,8 +24,8 @@ extension ImageStyle {
   }
 
   /// Course: 255 − ⌊255·(t − near)/(far − near)⌋, near white, misses and t
-  /// beyond the range black. Mit: (t − near)/(far − near) clamped, near black, misses
-  /// black.
+  /// beyond the range black. Mit: (t − near)/(far − near) clamped, near
+  /// black, misses black.
   public func depthImage<S: RayScalar>(
     _ buffers: RenderBuffers<S>, range given: ClosedRange<Double>?
   ) -> Image8 {

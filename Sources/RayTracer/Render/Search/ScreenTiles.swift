@@ -48,7 +48,8 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
   /// Tile t's entries are entries[starts[t]..<starts[t + 1]], tiles row by row.
   let starts: [Int]
   let entries: [Entry]
-  /// The sum of the spheres' boxes in pixels: the sphere tests the render makes.
+  /// The sum of the spheres' boxes in pixels: the sphere tests the render
+  /// makes.
   let coveredPixels: Int
 
   /// Where a hierarchy wins: boxes summing to more than this many times
