@@ -246,53 +246,43 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   func nearest(
     _ ray: CameraRay<Scalar>, candidates: UnsafeBufferPointer<Int32>? = nil
   ) -> (t: Scalar, what: Nearest)? {
-    var tBest = Scalar.infinity
-    var best: Nearest?
-    if let candidates {
-      spheres.withUnsafeBufferPointer { records in
+    var nearest = NearestHit<Scalar, Nearest>(before: .infinity)
+    spheres.withUnsafeBufferPointer { records in
+      if let candidates {
         for candidate in candidates {
           let index = Int(candidate)
-          if let t = Kernel.intersect(records[index], ray, before: tBest) {
-            tBest = t
-            best = .sphere(index)
+          nearest.test(.sphere(index)) {
+            Kernel.intersect(records[index], ray, before: $0)
           }
         }
-      }
-    } else if let hierarchy {
-      spheres.withUnsafeBufferPointer { records in
+      } else if let hierarchy {
         let leaves = SphereLeaves<Kernel>(records: records, ray: ray)
         if let hit = hierarchy.nearest(
-          ray, before: tBest, leaves: leaves, wide: wideHierarchy)
+          ray, before: nearest.t, leaves: leaves, wide: wideHierarchy)
         {
-          tBest = hit.t
-          best = .sphere(hit.index)
+          nearest.test(.sphere(hit.index)) { _ in hit.t }
         }
-      }
-    } else {
-      spheres.withUnsafeBufferPointer { records in
+      } else {
         for index in records.indices {
-          if let t = Kernel.intersect(records[index], ray, before: tBest) {
-            tBest = t
-            best = .sphere(index)
+          nearest.test(.sphere(index)) {
+            Kernel.intersect(records[index], ray, before: $0)
           }
         }
       }
     }
-    return nearest(ray, beyondSpheres: tBest, best)
+    return self.nearest(ray, after: nearest)
   }
 
-  /// The search of `nearest` after the spheres, whose nearest hit (or
-  /// infinity and nil) it starts from: planes, triangles, ellipsoids.
+  /// The search of `nearest` after the spheres, from the nearest sphere
+  /// hit (or none): planes, triangles, ellipsoids.
   @inline(__always)
   func nearest(
-    _ ray: CameraRay<Scalar>, beyondSpheres sphereT: Scalar, _ sphere: Nearest?
+    _ ray: CameraRay<Scalar>, after spheres: NearestHit<Scalar, Nearest>
   ) -> (t: Scalar, what: Nearest)? {
-    var tBest = sphereT
-    var best = sphere
+    var nearest = spheres
     for index in planes.indices {
-      if let t = Kernel.intersect(planes[index], ray, before: tBest) {
-        tBest = t
-        best = .plane(index)
+      nearest.test(.plane(index)) {
+        Kernel.intersect(planes[index], ray, before: $0)
       }
     }
     if !triangles.isEmpty {
@@ -302,32 +292,28 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
         if let triangleHierarchy {
           let leaves = TriangleLeaves(records: records, ray: prepared)
           if let hit = triangleHierarchy.nearest(
-            ray, before: tBest, leaves: leaves, wide: wideTriangleHierarchy)
+            ray, before: nearest.t, leaves: leaves,
+            wide: wideTriangleHierarchy)
           {
-            tBest = hit.t
-            best = .triangle(hit.index)
+            nearest.test(.triangle(hit.index)) { _ in hit.t }
           }
         } else {
           for index in records.indices {
-            if let found = records[index].intersect(prepared, before: tBest) {
-              tBest = found.t
-              best = .triangle(index)
+            nearest.test(.triangle(index)) {
+              records[index].intersect(prepared, before: $0)?.t
             }
           }
         }
       }
     }
     for index in ellipsoids.indices {
-      let local = ellipsoids[index].localRay(ray)
-      if let t = Kernel.intersect(
-        ellipsoids[index].sphere, local, before: tBest)
-      {
-        tBest = t
-        best = .ellipsoid(index)
+      nearest.test(.ellipsoid(index)) {
+        Kernel.intersect(
+          ellipsoids[index].sphere, ellipsoids[index].localRay(ray),
+          before: $0)
       }
     }
-    guard let best else { return nil }
-    return (tBest, best)
+    return nearest.hit
   }
 
   func normal(of what: Nearest, _ ray: CameraRay<Scalar>, t: Scalar) -> Vector3<

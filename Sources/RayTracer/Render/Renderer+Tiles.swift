@@ -147,7 +147,9 @@ extension Renderer {
             }
           }
           // The nearest entry rather than sphere: its copy of the record is
-          // in cache for the normal, the scene's is not.
+          // in cache for the normal, the scene's is not. Per pixel, the tie
+          // rule of `NearestHit` in two arrays: entries in scene order, each
+          // asked only for a hit strictly before the pixel's best.
           let entryBase = entries.startIndex
           for position in entries.indices {
             let entry = entries[position]
@@ -173,8 +175,9 @@ extension Renderer {
               let position = Int(nearestEntry[slot])
               let entry = position >= 0 ? entries[entryBase + position] : nil
               let hit = scene.nearest(
-                rays[slot], beyondSpheres: nearestT[slot],
-                entry.map { .sphere(Int($0.sphere)) })
+                rays[slot],
+                after: NearestHit(
+                  nearestT[slot], entry.map { .sphere(Int($0.sphere)) }))
               store(
                 hit, ray: rays[slot], pixel: row * settings.width + column,
                 scene: scene,

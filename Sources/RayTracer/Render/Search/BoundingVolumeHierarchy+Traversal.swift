@@ -43,12 +43,7 @@ extension BoundingVolumeHierarchy {
   ) -> (t: Scalar, index: Int)? where Leaves.Scalar == Scalar {
     guard !nodes.isEmpty else { return nil }
     let slab = Slab(ray)
-    var tBest = tMax
-    // The bound handed to the kernel: tMax until a hit, then just above
-    // the best t, so that a sphere at the same t comes back for the tie.
-    var limit = tMax
-    var best = -1
-    var bestOriginal = Int32.max
+    var nearest = NearestHit<Scalar, Int>(before: tMax)
     // The stack lives in the frame, uninitialised: 64 node indices (256
     // bytes) and 64 entry distances (at most 1 KiB, for Float80), each
     // within the 1 KiB that withUnsafeTemporaryAllocation always places on
@@ -63,7 +58,9 @@ extension BoundingVolumeHierarchy {
       ) { stackEntries in
         nodes.withUnsafeBufferPointer { nodes in
           order.withUnsafeBufferPointer { order in
-            guard slab.entry(nodes[0], before: tBest) != nil else { return }
+            guard slab.entry(nodes[0], before: nearest.t) != nil else {
+              return
+            }
             var current = 0
             var top = 0
             while true {
@@ -71,23 +68,18 @@ extension BoundingVolumeHierarchy {
               if node.isLeaf {
                 let first = Int(node.index)
                 for position in first..<(first + Int(node.count)) {
-                  guard let t = leaves.intersect(position, before: limit)
+                  guard
+                    let t = leaves.intersect(position, before: nearest.limit)
                   else { continue }
-                  let original = order[position]
-                  if t < tBest || (t == tBest && original < bestOriginal) {
-                    tBest = t
-                    limit = t.nextUp
-                    best = position
-                    bestOriginal = original
-                  }
+                  _ = nearest.offer(t, position, order: order[position])
                 }
               } else {
                 let left = Int(node.index)
                 let (near, far) =
                   slab.isNegative(node.axis)
                   ? (left + 1, left) : (left, left + 1)
-                let nearEntry = slab.entry(nodes[near], before: tBest)
-                if let farEntry = slab.entry(nodes[far], before: tBest) {
+                let nearEntry = slab.entry(nodes[near], before: nearest.t)
+                if let farEntry = slab.entry(nodes[far], before: nearest.t) {
                   if nearEntry != nil {
                     // At most one entry per level: depth < stackCapacity,
                     // checked when built, bounds `top`.
@@ -109,7 +101,7 @@ extension BoundingVolumeHierarchy {
               var next = -1
               while top > 0 {
                 top -= 1
-                if slab.reaches(stackEntries[top], before: tBest) {
+                if slab.reaches(stackEntries[top], before: nearest.t) {
                   next = Int(stackNodes[top])
                   break
                 }
@@ -121,7 +113,7 @@ extension BoundingVolumeHierarchy {
         }
       }
     }
-    return best >= 0 ? (tBest, best) : nil
+    return nearest.hit.map { ($0.t, $0.what) }
   }
 
   /// The per-ray part of the ray–box test.

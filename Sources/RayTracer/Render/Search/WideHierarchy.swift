@@ -201,11 +201,8 @@ struct WideHierarchy<Scalar: RayScalar>: Sendable {
     let exitScale = Self.exitScale
     let slack = Self.underflowSlack
 
-    var tBest = tMax
-    var limit = tMax
+    var nearest = NearestHit<Scalar, Int>(before: tMax)
     var bound = Self.bound(tMax)
-    var best = -1
-    var bestOriginal = Int32.max
 
     withUnsafeTemporaryAllocation(of: Int32.self, capacity: Self.stackCapacity)
     { stackNodes in
@@ -221,16 +218,11 @@ struct WideHierarchy<Scalar: RayScalar>: Sendable {
                 let leaf = ~current
                 let first = Int(leaf >> 3)
                 for position in first..<(first + Int(leaf & 7)) {
-                  guard let t = leaves.intersect(position, before: limit) else {
-                    continue
-                  }
-                  let original = order[position]
-                  if t < tBest || (t == tBest && original < bestOriginal) {
-                    tBest = t
-                    limit = t.nextUp
+                  guard
+                    let t = leaves.intersect(position, before: nearest.limit)
+                  else { continue }
+                  if nearest.offer(t, position, order: order[position]) {
                     bound = Self.bound(t)
-                    best = position
-                    bestOriginal = original
                   }
                 }
               } else {
@@ -302,7 +294,8 @@ struct WideHierarchy<Scalar: RayScalar>: Sendable {
         }
       }
     }
-    return best >= 0 ? .hit(t: tBest, position: best) : .miss
+    guard let hit = nearest.hit else { return .miss }
+    return .hit(t: hit.t, position: hit.what)
   }
 }
 
