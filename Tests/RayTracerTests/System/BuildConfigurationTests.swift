@@ -1,0 +1,15 @@
+import XCTest
+
+@testable import RayTracer
+
+final class BuildConfigurationTests: XCTestCase {
+  /// Debug builds optimise the library (Package.swift) but must keep its
+  /// assertions, which the tests rely on; release builds drop them.
+  func testAssertions_CheckedExactlyInDebugBuilds() {
+    #if DEBUG
+      XCTAssertTrue(BuildConfiguration.checksAssertions)
+    #else
+      XCTAssertFalse(BuildConfiguration.checksAssertions)
+    #endif
+  }
+}
