@@ -241,36 +241,20 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     case ellipsoid(Int)
   }
 
-  /// The nearest hit in (0, ∞) of a camera ray through the eye, testing
-  /// only the spheres in `candidates` when given (see `cullSpheres`).
-  func nearest(
-    _ ray: CameraRay<Scalar>, candidates: UnsafeBufferPointer<Int32>? = nil
+  /// The nearest hit in (0, ∞) of a camera ray through the eye, its
+  /// spheres found by `search`.
+  @inline(__always)
+  func nearest<Search: NearestSphereSearch>(
+    _ ray: CameraRay<Scalar>, by search: Search
   ) -> (t: Scalar, what: Nearest)? {
-    var nearest = NearestHit<Scalar, Nearest>(before: .infinity)
-    spheres.withUnsafeBufferPointer { records in
-      if let candidates {
-        for candidate in candidates {
-          let index = Int(candidate)
-          nearest.test(.sphere(index)) {
-            Kernel.intersect(records[index], ray, before: $0)
-          }
-        }
-      } else if let hierarchy {
-        let leaves = SphereLeaves<Kernel>(records: records, ray: ray)
-        if let hit = hierarchy.nearest(
-          ray, before: nearest.t, leaves: leaves, wide: wideHierarchy)
-        {
-          nearest.test(.sphere(hit.index)) { _ in hit.t }
-        }
-      } else {
-        for index in records.indices {
-          nearest.test(.sphere(index)) {
-            Kernel.intersect(records[index], ray, before: $0)
-          }
-        }
-      }
-    }
-    return self.nearest(ray, after: nearest)
+    nearest(ray, after: search.nearestSphere(ray, in: self))
+  }
+
+  /// The nearest hit in (0, ∞) of a camera ray through the eye, by the
+  /// hierarchy when the scene has one, else testing every sphere.
+  func nearest(_ ray: CameraRay<Scalar>) -> (t: Scalar, what: Nearest)? {
+    hierarchy != nil
+      ? nearest(ray, by: SphereHierarchy()) : nearest(ray, by: EverySphere())
   }
 
   /// The search of `nearest` after the spheres, from the nearest sphere

@@ -26,13 +26,13 @@ extension Renderer {
     }
     // Supersampled rays leave the pixel centres' frusta: no culling then.
     guard scene.cullsPerTile && settings.samples == 1 else {
-      // Tile by tile all the same: neighbouring rays visit the same nodes
-      // and spheres, which then stay in cache.
-      for start in stride(from: 0, to: settings.width, by: tileWidth) {
-        let tile = start..<min(start + tileWidth, settings.width)
-        for row in rows {
-          renderRow(row, tile, nil, columns, scene, camera, settings, targets)
-        }
+      if scene.usesHierarchy {
+        renderTiles(
+          rows, by: SphereHierarchy(), columns, scene, camera, settings,
+          targets)
+      } else {
+        renderTiles(
+          rows, by: EverySphere(), columns, scene, camera, settings, targets)
       }
       return
     }
@@ -56,7 +56,8 @@ extension Renderer {
           corner(left, bottom)
         )
         let count = scene.cullSpheres(corners: corners, into: candidates)
-        let chosen = UnsafeBufferPointer(rebasing: candidates[0..<count])
+        let chosen = CulledSpheres(
+          candidates: UnsafeBufferPointer(rebasing: candidates[0..<count]))
         for row in rows {
           renderRow(
             row, tile, chosen, columns, scene, camera, settings, targets)
@@ -65,8 +66,29 @@ extension Renderer {
     }
   }
 
-  static func renderRow<Kernel: IntersectionKernel, R: RayScalar>(
-    _ row: Int, _ tile: Range<Int>, _ candidates: UnsafeBufferPointer<Int32>?,
+  /// Renders a batch of rows tile by tile, every tile's spheres found by
+  /// `search`: neighbouring rays visit the same nodes and spheres, which
+  /// then stay in cache.
+  static func renderTiles<
+    Kernel: IntersectionKernel, R: RayScalar, Search: NearestSphereSearch
+  >(
+    _ rows: Range<Int>, by search: Search,
+    _ columns: UnsafeBufferPointer<R>, _ scene: CompiledScene<Kernel>,
+    _ camera: PerspectiveCamera<R>, _ settings: RenderSettings,
+    _ targets: Targets<Kernel.Scalar>
+  ) {
+    for start in stride(from: 0, to: settings.width, by: tileWidth) {
+      let tile = start..<min(start + tileWidth, settings.width)
+      for row in rows {
+        renderRow(row, tile, search, columns, scene, camera, settings, targets)
+      }
+    }
+  }
+
+  static func renderRow<
+    Kernel: IntersectionKernel, R: RayScalar, Search: NearestSphereSearch
+  >(
+    _ row: Int, _ tile: Range<Int>, _ search: Search,
     _ columns: UnsafeBufferPointer<R>, _ scene: CompiledScene<Kernel>,
     _ camera: PerspectiveCamera<R>, _ settings: RenderSettings,
     _ targets: Targets<Kernel.Scalar>
@@ -99,7 +121,7 @@ extension Renderer {
             column: column, row: row, scene: scene, camera: camera,
             settings: settings)
         }
-        let hit = scene.nearest(ray, candidates: candidates)
+        let hit = scene.nearest(ray, by: search)
         store(
           hit, ray: ray, pixel: pixel, scene: scene, settings: settings,
           targets: targets)

@@ -1,5 +1,29 @@
-/// Culling per tile: for scenes too small for a hierarchy or screen
-/// projection, each tile of pixels tests only the spheres its rays may hit.
+/// The spheres a tile of pixels' rays may hit (`CompiledScene.cullSpheres`),
+/// in scene order: for scenes too small for a hierarchy or screen
+/// projection.
+struct CulledSpheres: NearestSphereSearch {
+  let candidates: UnsafeBufferPointer<Int32>
+
+  @inline(__always)
+  func nearestSphere<Kernel: IntersectionKernel>(
+    _ ray: CameraRay<Kernel.Scalar>, in scene: CompiledScene<Kernel>
+  ) -> NearestHit<Kernel.Scalar, CompiledScene<Kernel>.Nearest> {
+    var nearest = NearestHit<Kernel.Scalar, CompiledScene<Kernel>.Nearest>(
+      before: .infinity)
+    scene.spheres.withUnsafeBufferPointer { records in
+      for candidate in candidates {
+        let index = Int(candidate)
+        nearest.test(.sphere(index)) {
+          Kernel.intersect(records[index], ray, before: $0)
+        }
+      }
+    }
+    return nearest
+  }
+}
+
+/// Culling per tile: each tile of pixels tests only the spheres its rays
+/// may hit.
 extension CompiledScene {
   /// Whether per-tile culling applies: spheres without a hierarchy.
   var cullsPerTile: Bool {
