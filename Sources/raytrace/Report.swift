@@ -61,6 +61,7 @@ struct Report: ParsableCommand {
   ]
 
   mutating func validate() throws {
+    guard !Raytrace.defersValidation else { return }
     guard size.count == 2, size.allSatisfy({ (1...4096).contains($0) }) else {
       throw ValidationError("--size takes two values between 1 and 4096.")
     }
