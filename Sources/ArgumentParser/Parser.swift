@@ -299,7 +299,8 @@ struct ArgumentReader {
       guard case .option(let parsing) = definition.kind else {
         if let attached {
           throw ParseFailure(
-            "The option '\(match.name.synopsisString)' does not take any value, "
+            "The option '\(match.name.synopsisString)' does not take any "
+              + "value, "
               + "but '\(attached)' was specified.")
         }
         flagUses[match.index, default: []].append((match.isOn, tokens[index]))
@@ -369,7 +370,8 @@ struct ArgumentReader {
         let definition = definitions[value.definition]
         guard definition.sink.take(value.text) else {
           throw ParseFailure(
-            "The value '\(value.text)' is invalid for '\(definition.label(for: value.name))'"
+            "The value '\(value.text)' is invalid for "
+              + "'\(definition.label(for: value.name))'"
               + choices(definition.allValues),
             help: helpLine(definition, name: value.name))
         }
@@ -521,7 +523,8 @@ struct ArgumentReader {
           help: helpLine(definition, name: definition.names.first))
       case .positional:
         return ParseFailure(
-          "Missing expected argument '\(definition.label(for: nil))\(repeating)'",
+          "Missing expected argument "
+            + "'\(definition.label(for: nil))\(repeating)'",
           help: helpLine(definition, name: nil))
       }
     }
@@ -673,7 +676,8 @@ struct CommandParser {
     return stack
   }
 
-  /// The path from the root to `type`; just the root when `type` isn't below it.
+  /// The path from the root to `type`; just the root when `type` isn't
+  /// below it.
   func commandStack(for type: ParsableCommand.Type) -> [ParsableCommand.Type] {
     func path(from node: ParsableCommand.Type, depth: Int)
       -> [ParsableCommand.Type]?
