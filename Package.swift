@@ -1,11 +1,100 @@
 // swift-tools-version:6.0
+import Foundation
 import PackageDescription
 
-// Two targets stand in for packages this machine cannot fetch; each copies the
-// real package's names, so adopting the package means deleting its folder and
-// replacing the target below with a package dependency:
-//   RealModule      -> swift-numerics (product "RealModule")
-//   ArgumentParser  -> swift-argument-parser (product "ArgumentParser")
+// Two packages, in one of two forms (README.md, "Packages"):
+//
+// - By default, two targets stand in for them, built with no network:
+//   Sources/ArgumentParser copies the names of swift-argument-parser's
+//   product ArgumentParser, Sources/RealModule those of swift-numerics'
+//   product RealModule (Tests/ArgumentParserTests tests the stand-in).
+// - With RAYTRACE_PACKAGES set, the real packages instead, and the stand-ins
+//   are not declared at all:
+//     RAYTRACE_PACKAGES=apple          from GitHub (needs the network)
+//     RAYTRACE_PACKAGES=PARSER:NUMERICS  local checkouts of each
+//   RAYTRACE_ARGUMENT_PARSER_PATH and RAYTRACE_NUMERICS_PATH name one local
+//   checkout each (and choose the real packages on their own too).
+// Fuzz/run.sh reads the same variables.
+let environment = ProcessInfo.processInfo.environment
+
+func variable(_ name: String) -> String? {
+  guard let value = environment[name], !value.isEmpty else { return nil }
+  return value
+}
+
+/// Where each real package comes from: a local path, or nil for GitHub.
+struct RealPackages {
+  var argumentParserPath: String?
+  var numericsPath: String?
+}
+
+let realPackages: RealPackages? = {
+  let parserPath = variable("RAYTRACE_ARGUMENT_PARSER_PATH")
+  let numericsPath = variable("RAYTRACE_NUMERICS_PATH")
+  switch variable("RAYTRACE_PACKAGES") {
+  case nil where parserPath == nil && numericsPath == nil:
+    return nil
+  case nil, "apple"?:
+    return RealPackages(
+      argumentParserPath: parserPath, numericsPath: numericsPath)
+  case let value? where value.contains(":"):
+    let paths = value.split(separator: ":", maxSplits: 1).map(String.init)
+    guard paths.count == 2, !paths[0].isEmpty, !paths[1].isEmpty else {
+      fatalError(
+        "RAYTRACE_PACKAGES='\(value)': expected "
+          + "PARSER_CHECKOUT:NUMERICS_CHECKOUT")
+    }
+    return RealPackages(
+      argumentParserPath: parserPath ?? paths[0],
+      numericsPath: numericsPath ?? paths[1])
+  case let value?:
+    fatalError(
+      "RAYTRACE_PACKAGES='\(value)': expected 'apple' or "
+        + "PARSER_CHECKOUT:NUMERICS_CHECKOUT")
+  }
+}()
+
+/// A package from a local checkout, or from its URL at `version` or later;
+/// returns the dependency and the package's identity for `.product`.
+func dependency(path: String?, url: String, from version: Version)
+  -> (Package.Dependency, String)
+{
+  guard let path else {
+    let name = URL(string: url)?.deletingPathExtension().lastPathComponent
+    return (.package(url: url, from: version), name ?? url)
+  }
+  // SwiftPM names a local package after its folder.
+  let name = URL(fileURLWithPath: path).standardizedFileURL.lastPathComponent
+  return (.package(path: path), name)
+}
+
+var dependencies: [Package.Dependency] = []
+var argumentParser: Target.Dependency = "ArgumentParser"
+var realModule: Target.Dependency = "RealModule"
+var standIns: [Target] = [
+  .target(name: "RealModule"),
+  .target(name: "ArgumentParser"),
+  .testTarget(
+    name: "ArgumentParserTests",
+    dependencies: ["ArgumentParser"]
+  ),
+]
+
+if let realPackages {
+  let (parser, parserName) = dependency(
+    path: realPackages.argumentParserPath,
+    url: "https://github.com/apple/swift-argument-parser.git",
+    from: "1.5.0")
+  let (numerics, numericsName) = dependency(
+    path: realPackages.numericsPath,
+    url: "https://github.com/apple/swift-numerics.git",
+    from: "1.0.0")
+  dependencies = [parser, numerics]
+  argumentParser = .product(name: "ArgumentParser", package: parserName)
+  realModule = .product(name: "RealModule", package: numericsName)
+  standIns = []
+}
+
 // `swift run` and `swift test` build for debugging. The renderer's library
 // is optimised in those builds too, with its assertions kept
 // (`-assert-config Debug`), so that the course's `swift run raytrace …`
@@ -13,7 +102,7 @@ import PackageDescription
 // library in a debugger without optimisation:
 //   RAYTRACE_UNOPTIMIZED=1 swift build
 let optimizedInDebugBuilds: [SwiftSetting] =
-  Context.environment["RAYTRACE_UNOPTIMIZED"] != nil
+  variable("RAYTRACE_UNOPTIMIZED") != nil
   ? []
   : [
     .unsafeFlags(
@@ -30,30 +119,25 @@ let package = Package(
     .executable(name: "raytrace", targets: ["raytrace"]),
     .library(name: "RayTracer", targets: ["RayTracer"]),
   ],
-  targets: [
+  dependencies: dependencies,
+  targets: standIns + [
     // The system zlib (zlib1g-dev on Debian, part of the SDK on macOS).
     .systemLibrary(
       name: "CZlib",
       providers: [.apt(["zlib1g-dev"]), .brew(["zlib"])]
     ),
-    .target(name: "RealModule"),
-    .target(name: "ArgumentParser"),
     .target(
       name: "RayTracer",
-      dependencies: ["RealModule", "CZlib"],
+      dependencies: [realModule, "CZlib"],
       swiftSettings: optimizedInDebugBuilds
     ),
     .executableTarget(
       name: "raytrace",
-      dependencies: ["RayTracer", "ArgumentParser"]
+      dependencies: ["RayTracer", argumentParser]
     ),
     .testTarget(
       name: "RayTracerTests",
       dependencies: ["RayTracer", "raytrace"]
-    ),
-    .testTarget(
-      name: "ArgumentParserTests",
-      dependencies: ["ArgumentParser"]
     ),
   ]
 )

@@ -25,7 +25,7 @@ public func fuzzCommandLine(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt
         String(decoding: $0, as: UTF8.self)
       }
     } ?? []
-  check(Raytrace.self, arguments) { try Raytrace.parseAsRoot(arguments) }
+  check(Raytrace.self, arguments) { try Raytrace.parseCommand(arguments) }
   check(Render.self, arguments) { try Render.parse(arguments) }
   return 0
 }

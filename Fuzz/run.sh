@@ -19,7 +19,8 @@
 # Why not SwiftPM: it cannot build a libFuzzer target (its products would
 # get libFuzzer's main), so each module is compiled here with swiftc, the
 # same sources SwiftPM compiles, instrumented with -sanitize=fuzzer,address:
-#   RealModule, ArgumentParser     the stand-ins, as they are
+#   RealModule, ArgumentParser     the stand-ins, as they are, or the real
+#                                  packages' modules (below)
 #   RayTracer                      -enable-testing: the fuzzer reaches the
 #                                  internal SceneParser.parse(bytes:file:)
 #   raytrace                       the executable's sources, @main included,
@@ -37,6 +38,13 @@
 #   FUZZ_STRICT=1       scene fuzzer: also require finite unit normals and
 #                       finite colours of every hit (see the harness)
 #   SWIFTC              the compiler (default: swiftc on PATH)
+#   RAYTRACE_PACKAGES, RAYTRACE_ARGUMENT_PARSER_PATH, RAYTRACE_NUMERICS_PATH
+#                       as for Package.swift (README.md, "Packages"): the
+#                       real swift-argument-parser and swift-numerics
+#                       instead of the stand-ins, their modules compiled
+#                       from the local checkouts or, for 'apple', from
+#                       .build/checkouts/ (swift package resolve); objects
+#                       then go to .build/fuzz/obj-real*/
 #
 # Defaults passed to libFuzzer, overridable by repeating the option:
 # -timeout=10 (an input taking seconds is a finding), -rss_limit_mb=2048,
@@ -52,8 +60,34 @@ mode=${1:-scene}
 
 build=.build/fuzz
 objects=$build/obj${opt// /}
-mkdir -p "$objects"
 flags=(-parse-as-library -wmo -gline-tables-only $opt -sanitize=fuzzer,address)
+
+# The two packages: the stand-ins' folders, or the real packages' checkouts
+# chosen as Package.swift chooses them.
+parser_path=${RAYTRACE_ARGUMENT_PARSER_PATH:-}
+numerics_path=${RAYTRACE_NUMERICS_PATH:-}
+packages=${RAYTRACE_PACKAGES:-}
+if [ -n "$packages$parser_path$numerics_path" ]; then
+  case $packages in
+    '' | apple) ;;
+    *:*)
+      parser_path=${parser_path:-${packages%%:*}}
+      numerics_path=${numerics_path:-${packages#*:}}
+      ;;
+    *)
+      echo "RAYTRACE_PACKAGES='$packages': expected 'apple' or" \
+        "PARSER_CHECKOUT:NUMERICS_CHECKOUT" >&2
+      exit 64
+      ;;
+  esac
+  if [ -z "$parser_path" ] || [ -z "$numerics_path" ]; then
+    swift package resolve >&2
+    parser_path=${parser_path:-.build/checkouts/swift-argument-parser}
+    numerics_path=${numerics_path:-.build/checkouts/swift-numerics}
+  fi
+  objects=$build/obj-real${opt// /}
+fi
+mkdir -p "$objects"
 
 # Compiles module $1 from the .swift files under $2 unless its object is
 # newer than all of them; extra swiftc flags follow.
@@ -72,53 +106,81 @@ compile() {
     -c "${sources[@]}" -o "$object"
 }
 
+# RealModule, and what it needs: the real one imports the C module
+# _NumericsShims (a header of inline functions).
+numerics_flags=()
+compile_real_module() {
+  if [ -z "$numerics_path" ]; then
+    compile RealModule Sources/RealModule
+    return
+  fi
+  local shims=$numerics_path/Sources/_NumericsShims/include/module.modulemap
+  numerics_flags=(-Xcc "-fmodule-map-file=$shims")
+  compile RealModule "$numerics_path/Sources/RealModule" "${numerics_flags[@]}"
+}
+
+# ArgumentParser, and the objects to link: the real one imports
+# ArgumentParserToolInfo.
+parser_objects=()
+compile_argument_parser() {
+  if [ -z "$parser_path" ]; then
+    compile ArgumentParser Sources/ArgumentParser
+    parser_objects=("$objects/ArgumentParser.o")
+    return
+  fi
+  compile ArgumentParserToolInfo "$parser_path/Sources/ArgumentParserToolInfo"
+  compile ArgumentParser "$parser_path/Sources/ArgumentParser"
+  parser_objects=("$objects/ArgumentParser.o" \
+    "$objects/ArgumentParserToolInfo.o")
+}
+
 build_scene() {
-  compile RealModule Sources/RealModule
+  compile_real_module
   compile RayTracer Sources/RayTracer -enable-testing \
     -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap
   echo "linking fuzz-scene" >&2
   "$swiftc" "${flags[@]}" -I "$objects" \
-    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap \
+    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap "${numerics_flags[@]}" \
     Fuzz/FuzzSceneParser.swift "$objects/RayTracer.o" "$objects/RealModule.o" \
     -lz -use-ld=lld -o "$objects/fuzz-scene"
 }
 
 build_obj() {
-  compile RealModule Sources/RealModule
-  compile RayTracer Sources/RayTracer -enable-testing \
+  compile_real_module
+  compile RayTracer Sources/RayTracer -enable-testing "${numerics_flags[@]}" \
     -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap
   echo "linking fuzz-obj" >&2
   "$swiftc" "${flags[@]}" -I "$objects" \
-    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap \
+    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap "${numerics_flags[@]}" \
     Fuzz/FuzzOBJReader.swift "$objects/RayTracer.o" "$objects/RealModule.o" \
     -lz -use-ld=lld -o "$objects/fuzz-obj"
 }
 
 # A harness of the library alone: build_library NAME FILE.
 build_library() {
-  compile RealModule Sources/RealModule
-  compile RayTracer Sources/RayTracer -enable-testing \
+  compile_real_module
+  compile RayTracer Sources/RayTracer -enable-testing "${numerics_flags[@]}" \
     -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap
   echo "linking fuzz-$1" >&2
   "$swiftc" "${flags[@]}" -I "$objects" \
-    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap \
+    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap "${numerics_flags[@]}" \
     "$2" "$objects/RayTracer.o" "$objects/RealModule.o" \
     -lz -use-ld=lld -o "$objects/fuzz-$1"
 }
 
 build_cli() {
-  compile RealModule Sources/RealModule
-  compile RayTracer Sources/RayTracer -enable-testing \
+  compile_real_module
+  compile RayTracer Sources/RayTracer -enable-testing "${numerics_flags[@]}" \
     -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap
-  compile ArgumentParser Sources/ArgumentParser
-  compile raytrace Sources/raytrace -enable-testing \
+  compile_argument_parser
+  compile raytrace Sources/raytrace -enable-testing "${numerics_flags[@]}" \
     -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap \
     -Xfrontend -entry-point-function-name -Xfrontend raytrace_main
   echo "linking fuzz-cli" >&2
   "$swiftc" "${flags[@]}" -I "$objects" \
-    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap \
+    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap "${numerics_flags[@]}" \
     Fuzz/FuzzCommandLine.swift "$objects/raytrace.o" \
-    "$objects/ArgumentParser.o" "$objects/RayTracer.o" \
+    "${parser_objects[@]}" "$objects/RayTracer.o" \
     "$objects/RealModule.o" -lz -use-ld=lld -o "$objects/fuzz-cli"
 }
 

@@ -55,7 +55,8 @@ where Self: RawRepresentable, RawValue: ExpressibleByArgument {
 
 extension RawRepresentable
 where Self: ExpressibleByArgument, RawValue: ExpressibleByArgument {
-  /// Lets `extension MyEnum: ExpressibleByArgument {}` be the whole conformance.
+  /// Lets `extension MyEnum: ExpressibleByArgument {}` be the whole
+  /// conformance.
   public init?(argument: String) {
     guard let rawValue = RawValue(argument: argument) else { return nil }
     self.init(rawValue: rawValue)

@@ -186,7 +186,10 @@ struct HelpGenerator {
       var names = commandStack.map { $0._commandName }
       names.insert("help", at: min(1, names.count))
       subcommandHint =
-        "\n  See '\(names.joined(separator: " ")) <subcommand>' for detailed help."
+        """
+          \n  See '\(names.joined(separator: " ")) <subcommand>' for detailed \
+          help.
+          """
     }
     return renderedAbstract + renderedUsage + renderedSections + subcommandHint
   }
@@ -287,7 +290,8 @@ extension String {
     guard let first = lines.first else { return self }
     let indent = String(repeating: " ", count: count)
     return
-      ([String(first)] + lines.dropFirst().map { $0.isEmpty ? "" : indent + $0 })
+      ([String(first)]
+      + lines.dropFirst().map { $0.isEmpty ? "" : indent + $0 })
       .joined(separator: "\n")
   }
 

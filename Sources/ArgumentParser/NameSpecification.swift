@@ -11,7 +11,8 @@ public struct NameSpecification: ExpressibleByArrayLiteral, Sendable {
 
     var base: Representation
 
-    /// `--` and the property's name in kebab case: `pngLevel` gives `--png-level`.
+    /// `--` and the property's name in kebab case: `pngLevel` gives
+    /// `--png-level`.
     public static var long: Element {
       Element(base: .long)
     }

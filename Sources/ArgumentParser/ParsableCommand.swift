@@ -129,7 +129,8 @@ extension ParsableArguments {
     }
   }
 
-  /// Like `parse(_:)`, but prints the error or help and exits instead of throwing.
+  /// Like `parse(_:)`, but prints the error or help and exits instead of
+  /// throwing.
   public static func parseOrExit(_ arguments: [String]? = nil) -> Self {
     do {
       return try parse(arguments)

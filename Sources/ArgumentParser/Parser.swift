@@ -171,7 +171,6 @@ struct ArgumentReader {
       return .option(
         match, attached: String(body[body.index(after: equals)...]))
     }
-    if token.isNegativeNumber { return .value }
     if let first = body.first, let match = shortNames[first],
       case .short(_, true) = match.name,
       takesValue(match)
@@ -227,12 +226,22 @@ struct ArgumentReader {
     return index
   }
 
-  /// Parses `tokens` into the wrappers, checking values, leftovers and
-  /// required arguments; throws a `ParseFailure` for the first problem.
-  func read(_ tokens: [String]) throws {
+  /// What reading a command's tokens found wrong after the values were
+  /// stored, in the real package's order: a missing required argument
+  /// (reported before the command's `validate()`, unless help was asked
+  /// for) and then an unknown option or unexpected argument (reported after
+  /// `validate()` and after the help flags).
+  struct Outcome {
+    var missing: ParseFailure?
+    var leftover: ParseFailure?
+  }
+
+  /// Parses `tokens` into the wrappers; throws a `ParseFailure` for a
+  /// missing or invalid value, which the real package reports at once.
+  func read(_ tokens: [String]) throws -> Outcome {
     var reading = Reading(reader: self, tokens: tokens)
     try reading.scan()
-    try reading.finish()
+    return try reading.finish()
   }
 
   /// The state of one pass over the tokens.
@@ -290,7 +299,8 @@ struct ArgumentReader {
       guard case .option(let parsing) = definition.kind else {
         if let attached {
           throw ParseFailure(
-            "The option '\(match.name.synopsisString)' does not take any value, "
+            "The option '\(match.name.synopsisString)' does not take any "
+              + "value, "
               + "but '\(attached)' was specified.")
         }
         flagUses[match.index, default: []].append((match.isOn, tokens[index]))
@@ -353,14 +363,15 @@ struct ArgumentReader {
 
     /// Hands out positional values, then stores everything, in the real
     /// package's order of complaints.
-    mutating func finish() throws {
+    mutating func finish() throws -> Outcome {
       assignPositionals()
 
       for value in values.sorted(by: { $0.token < $1.token }) {
         let definition = definitions[value.definition]
         guard definition.sink.take(value.text) else {
           throw ParseFailure(
-            "The value '\(value.text)' is invalid for '\(definition.label(for: value.name))'"
+            "The value '\(value.text)' is invalid for "
+              + "'\(definition.label(for: value.name))'"
               + choices(definition.allValues),
             help: helpLine(definition, name: value.name))
         }
@@ -387,27 +398,25 @@ struct ArgumentReader {
         }
       }
 
-      if let first = unknown.first {
-        throw ParseFailure(unknownOptionMessage(first.name))
-      }
-
-      switch loose.count {
-      case 0:
-        break
-      case 1:
-        throw ParseFailure("Unexpected argument '\(loose[0].text)'")
-      default:
-        let list = loose.map(\.text).joined(separator: "', '")
-        throw ParseFailure("\(loose.count) unexpected arguments: '\(list)'")
-      }
-
       for definition in definitions {
         definition.sink.commit()
       }
 
-      for definition in definitions where !definition.sink.hasValue() {
-        throw missingArgument(definition)
+      var outcome = Outcome()
+      outcome.missing = definitions.first { !$0.sink.hasValue() }.map {
+        missingArgument($0)
       }
+      if let first = unknown.first {
+        outcome.leftover = ParseFailure(unknownOptionMessage(first.name))
+      } else if loose.count == 1 {
+        outcome.leftover = ParseFailure(
+          "Unexpected argument '\(loose[0].text)'")
+      } else if loose.count > 1 {
+        let list = loose.map(\.text).joined(separator: "', '")
+        outcome.leftover = ParseFailure(
+          "\(loose.count) unexpected arguments: '\(list)'")
+      }
+      return outcome
     }
 
     /// Fills positional arguments in declaration order from the loose values,
@@ -514,22 +523,11 @@ struct ArgumentReader {
           help: helpLine(definition, name: definition.names.first))
       case .positional:
         return ParseFailure(
-          "Missing expected argument '\(definition.label(for: nil))\(repeating)'",
+          "Missing expected argument "
+            + "'\(definition.label(for: nil))\(repeating)'",
           help: helpLine(definition, name: nil))
       }
     }
-  }
-}
-
-extension String {
-  /// `-1`, `-0.5`, `-.5`, `-2e3`: values, not options, unless declared as names.
-  var isNegativeNumber: Bool {
-    guard hasPrefix("-"), let second = dropFirst().first,
-      second.isNumber || second == "."
-    else {
-      return false
-    }
-    return Double(self) != nil
   }
 }
 
@@ -568,9 +566,9 @@ struct CommandParser {
           if let subcommand = configuration.subcommands.first(where: {
             $0._commandName == next || $0.configuration.aliases.contains(next)
           }) {
-            try finish(
-              &command, reader: reader, tokens: own, stack: stack,
-              isEmpty: isEmpty)
+            _ = try finish(
+              &command, reader: reader, tokens: own, remaining: tokens,
+              stack: stack, isEmpty: isEmpty)
             stack.append(subcommand)
             tokens = Array(rest.dropFirst())
             continue
@@ -580,48 +578,74 @@ struct CommandParser {
               commandStack: commandStack(forNames: Array(rest.dropFirst())))
           }
         }
-        try checkForBuiltInFlags(tokens, stack: stack)
         if let subcommand = configuration.defaultSubcommand {
-          try finish(
-            &command, reader: reader, tokens: own, stack: stack,
-            isEmpty: isEmpty)
+          _ = try finish(
+            &command, reader: reader, tokens: own, remaining: tokens,
+            stack: stack, isEmpty: isEmpty)
+          // Before the default subcommand takes over, a help or version
+          // flag counts only as the one argument left, as in the real
+          // package: `raytrace --help` is the root's help, `raytrace SCENE
+          // --help` the default subcommand's.
+          if rest.count == 1 {
+            try checkForBuiltInFlags(rest, stack: stack)
+          }
           stack.append(subcommand)
           tokens = rest
           continue
         }
       }
+      let leftover = try finish(
+        &command, reader: reader, tokens: tokens, remaining: tokens,
+        stack: stack, isEmpty: isEmpty)
       try checkForBuiltInFlags(tokens, stack: stack)
-      try finish(
-        &command, reader: reader, tokens: tokens, stack: stack, isEmpty: isEmpty
-      )
+      if let leftover {
+        throw parseError(leftover, stack: stack, isEmpty: isEmpty)
+      }
       return command
     }
     throw CommandError(commandStack: [root], parserError: .invalidState)
   }
 
   /// Reads a command's tokens and validates it, tagging errors with the
-  /// command stack so that the message shows the right usage.
+  /// command stack so that the message shows the right usage. In the real
+  /// package's order: a missing or invalid value first, then (unless a help
+  /// flag is among the `remaining` tokens) a missing argument and the
+  /// command's `validate()`; an unknown option or unexpected argument is
+  /// returned, for the caller to report after the help flags.
   private func finish(
     _ command: inout ParsableCommand, reader: ArgumentReader, tokens: [String],
-    stack: [ParsableCommand.Type], isEmpty: Bool
-  ) throws {
+    remaining: [String], stack: [ParsableCommand.Type], isEmpty: Bool
+  ) throws -> ParseFailure? {
+    let outcome: ArgumentReader.Outcome
     do {
-      try reader.read(tokens)
+      outcome = try reader.read(tokens)
     } catch let failure as ParseFailure {
-      let error = ParserError.invalidInput(failure)
-      throw CommandError(
-        commandStack: stack, parserError: isEmpty ? .noArguments(error) : error)
+      throw parseError(failure, stack: stack, isEmpty: isEmpty)
+    }
+    if let missing = outcome.missing {
+      try checkForBuiltInFlags(remaining, stack: stack)
+      throw parseError(missing, stack: stack, isEmpty: isEmpty)
     }
     do {
       try ArgumentDefinition.validateGroups(in: command)
       try command.validate()
     } catch {
+      try checkForBuiltInFlags(remaining, stack: stack)
       throw CommandError(
         commandStack: stack, parserError: .userValidationError(error))
     }
+    return outcome.leftover
   }
 
-  /// Help and version flags win over everything else on the line.
+  private func parseError(
+    _ failure: ParseFailure, stack: [ParsableCommand.Type], isEmpty: Bool
+  ) -> CommandError {
+    let error = ParserError.invalidInput(failure)
+    return CommandError(
+      commandStack: stack, parserError: isEmpty ? .noArguments(error) : error)
+  }
+
+  /// Help and version flags win over what remains to report.
   private func checkForBuiltInFlags(
     _ tokens: [String], stack: [ParsableCommand.Type]
   ) throws {
@@ -652,7 +676,8 @@ struct CommandParser {
     return stack
   }
 
-  /// The path from the root to `type`; just the root when `type` isn't below it.
+  /// The path from the root to `type`; just the root when `type` isn't
+  /// below it.
   func commandStack(for type: ParsableCommand.Type) -> [ParsableCommand.Type] {
     func path(from node: ParsableCommand.Type, depth: Int)
       -> [ParsableCommand.Type]?

@@ -23,7 +23,8 @@ final class ArgumentStorage<Value>: @unchecked Sendable {
   func read(wrapper: String) -> Value {
     guard let value else {
       fatalError(
-        "\(wrapper) value read before parsing: use a command made by parse or parseAsRoot, "
+        "\(wrapper) value read before parsing: use a command made by parse or "
+          + "parseAsRoot, "
           + "or give the property a default value.")
     }
     return value
@@ -225,7 +226,10 @@ public struct Option<Value>: CustomStringConvertible {
   @available(
     *, unavailable,
     message:
-      "A default value must be provided unless the value type conforms to ExpressibleByArgument."
+      """
+        A default value must be provided unless the value type conforms to \
+        ExpressibleByArgument.
+        """
   )
   public init() {
     fatalError("unavailable")
@@ -357,7 +361,10 @@ public struct Argument<Value>: CustomStringConvertible {
   @available(
     *, unavailable,
     message:
-      "A default value must be provided unless the value type conforms to ExpressibleByArgument."
+      """
+        A default value must be provided unless the value type conforms to \
+        ExpressibleByArgument.
+        """
   )
   public init() {
     fatalError("unavailable")

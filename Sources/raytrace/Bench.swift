@@ -31,6 +31,7 @@ struct Bench: ParsableCommand {
   var quick = false
 
   mutating func validate() throws {
+    guard !Raytrace.defersValidation else { return }
     guard runs >= 1 else { throw ValidationError("--runs must be at least 1.") }
   }
 
@@ -38,7 +39,8 @@ struct Bench: ParsableCommand {
     let benchmark = Benchmark(
       executable: currentExecutable(), dataFolder: data, runs: runs)
     print(
-      "| workload | size | objects | threads | outputs | render, warm (ms) | Mrays/s | render, first (ms) | end to end (s) | peak memory (MiB) |"
+      "| workload | size | objects | threads | outputs | render, warm (ms) | "
+        + "Mrays/s | render, first (ms) | end to end (s) | peak memory (MiB) |"
     )
     print("|---|---|---:|---:|---|---:|---:|---:|---:|---:|")
     var endToEnd: [Int: Double] = [:]
@@ -52,8 +54,10 @@ struct Bench: ParsableCommand {
       do {
         let result = try benchmark.measure(workload)
         print(
-          "| \(workload.name) | \(workload.width)×\(workload.height) | \(workload.objectsDescription) | "
-            + "\(result.threads) | \(workload.outputs.names.joined(separator: " + ")) | "
+          "| \(workload.name) | \(workload.width)×\(workload.height) | "
+            + "\(workload.objectsDescription) | "
+            + "\(result.threads) | "
+            + "\(workload.outputs.names.joined(separator: " + ")) | "
             + "\(formatted(result.warmRenderSeconds * 1000, digits: 3)) | "
             + "\(formatted(result.megaraysPerSecond, digits: 3)) | "
             + "\(formatted(result.renderSeconds * 1000, digits: 3)) | "
@@ -73,7 +77,8 @@ struct Bench: ParsableCommand {
     // The issue's scaling goal, read off the rows above.
     if let large = endToEnd[1_000_000], let small = endToEnd[10_000] {
       print(
-        "\n10⁶ spheres end to end ÷ 10⁴ spheres end to end (depth + normals, all cores): "
+        "\n10⁶ spheres end to end ÷ 10⁴ spheres end to end (depth + normals, "
+          + "all cores): "
           + "\(formatted(large / small, digits: 3))×")
     }
   }

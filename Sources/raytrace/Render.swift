@@ -58,7 +58,11 @@ struct Render: ParsableCommand {
   @Option(
     name: .customLong("depth-range"), parsing: .upToNextOption,
     help: ArgumentHelp(
-      "Map depths MIN..MAX to the depth image (default: the course style takes the nearest to the farthest hit closer than 40; the mit style the nearest to the farthest hit).",
+      """
+        Map depths MIN..MAX to the depth image (default: the course style \
+        takes the nearest to the farthest hit closer than 40; the mit style \
+        the nearest to the farthest hit).
+        """,
       valueName: "min max"))
   var depthRange: [Double] = []
 
@@ -70,71 +74,109 @@ struct Render: ParsableCommand {
 
   @Option(
     help: ArgumentHelp(
-      "Image convention: course (the Swift course's images) or mit (the original assignment's; the default with -input).",
+      """
+        Image convention: course (the Swift course's images) or mit (the \
+        original assignment's; the default with -input).
+        """,
       valueName: "style"))
   var style: ImageStyle?
 
   @Option(
     help:
-      "Precision of the geometry and shading: double is exact to a few ulps on every scene of the stiff suite; float is faster but loses planets and far-from-origin scenes."
+      """
+        Precision of the geometry and shading: double is exact to a few ulps \
+        on every scene of the stiff suite; float is faster but loses planets \
+        and far-from-origin scenes.
+        """
   )
   var precision: Precision = .double
 
   @Option(
     help:
-      "Sphere intersection: stable (cancellation-free) or naive (the course's textbook formula, for comparison)."
+      """
+        Sphere intersection: stable (cancellation-free) or naive (the \
+        course's textbook formula, for comparison).
+        """
   )
   var intersection: IntersectionMethod = .stable
 
   @Option(
     help: ArgumentHelp(
-      "Renderer: fast (the default) or course (the course's loop over every object by the hit protocol, in double precision; the same image, slower).",
+      """
+        Renderer: fast (the default) or course (the course's loop over every \
+        object by the hit protocol, in double precision; the same image, \
+        slower).
+        """,
       valueName: "engine"))
   var engine: Engine = .fast
 
   @Option(
     help:
-      "Worker threads (default: all cores). The image is identical for any count."
+      """
+        Worker threads (default: all cores). The image is identical for any \
+        count.
+        """
   )
   var threads: Int?
 
   @Option(
     name: .customLong("png-level"),
     help:
-      "zlib level for PNG files, 0 to 9: lower is faster and larger, higher smaller and slower."
+      """
+        zlib level for PNG files, 0 to 9: lower is faster and larger, higher \
+        smaller and slower.
+        """
   )
   var pngLevel: Int = Int(PNGOptions.default.compressionLevel)
 
   @Option(
     help: ArgumentHelp(
-      "Rays per pixel for the shaded image: 1, 4, 9, 16, ... (a square), jittered on a grid of strata; depth and normals keep the pixel centre.",
+      """
+        Rays per pixel for the shaded image: 1, 4, 9, 16, ... (a square), \
+        jittered on a grid of strata; depth and normals keep the pixel centre.
+        """,
       valueName: "n"))
   var samples: Int = 1
 
   @Option(
     name: [.long, .customLong("filter", withSingleDash: true)],
     help:
-      "The pixel filter of supersampled shading: box (the pixel's square) or tent (a 2x2-pixel tent)."
+      """
+        The pixel filter of supersampled shading: box (the pixel's square) or \
+        tent (a 2x2-pixel tent).
+        """
   )
   var filter: PixelFilter = .box
 
   @Flag(
     name: .customLong("jitter", withSingleDash: true),
     help:
-      "The assignment's spelling: samples are always jittered, so this changes nothing."
+      """
+        The assignment's spelling: samples are always jittered, so this \
+        changes nothing.
+        """
   )
   var jitter = false
 
   @Flag(
     help:
-      "Print what was rendered to standard error: size, rays, time, throughput, and which outputs were computed or left out."
+      """
+        Print what was rendered to standard error: size, rays, time, \
+        throughput, and which outputs were computed or left out.
+        """
   )
   var stats = false
 
+  // Unconditional: a negative count reaches validate() and its message.
   @Option(
-    name: .customLong("repeat"),
+    name: .customLong("repeat"), parsing: .unconditional,
     help: ArgumentHelp(
-      "Render the image N more times in the same process; --stats then reports the median of those warm renders, and the first one's time (for benchmarks: peers time repeated renders). The files are written once.",
+      """
+        Render the image N more times in the same process; --stats then \
+        reports the median of those warm renders, and the first one's time \
+        (for benchmarks: peers time repeated renders). The files are written \
+        once.
+        """,
       valueName: "n"))
   var repeats = 0
 
@@ -147,6 +189,7 @@ struct Render: ParsableCommand {
   }
 
   mutating func validate() throws {
+    guard !Raytrace.defersValidation else { return }
     _ = try plan()
   }
 
@@ -205,7 +248,8 @@ struct Render: ParsableCommand {
       guard let path else { continue }
       guard let file = OutputFile(kind: kind, path: path) else {
         throw ValidationError(
-          "Cannot tell the format of '\(Self.escaped(path))': use .png, .ppm, .pfm or .npy."
+          "Cannot tell the format of '\(Self.escaped(path))': use .png, .ppm, "
+            + ".pfm or .npy."
         )
       }
       files.append(file)
@@ -226,7 +270,8 @@ struct Render: ParsableCommand {
     let strata = Int(Double(max(samples, 0)).squareRoot())
     guard samples >= 1, samples <= 4096, strata * strata == samples else {
       throw ValidationError(
-        "--samples must be a square between 1 and 4096 (1, 4, 9, 16, ...); got \(samples)."
+        "--samples must be a square between 1 and 4096 (1, 4, 9, 16, ...); got "
+          + "\(samples)."
       )
     }
     var settings = RenderSettings(
@@ -237,7 +282,8 @@ struct Render: ParsableCommand {
     settings.filter = filter
     guard engine == .fast || precision == .double else {
       throw ValidationError(
-        "--engine course computes in double, the scene's precision; drop --precision float or use --engine fast."
+        "--engine course computes in double, the scene's precision; drop "
+          + "--precision float or use --engine fast."
       )
     }
     settings.engine = engine
@@ -258,7 +304,8 @@ struct Render: ParsableCommand {
     for (index, file) in files.enumerated() {
       if FileIdentity.same(file.path, scenePath) {
         throw ValidationError(
-          "\(name(of: file)) would overwrite the scene file '\(escaped(scenePath))'."
+          "\(name(of: file)) would overwrite the scene file "
+            + "'\(escaped(scenePath))'."
         )
       }
       for other in files[..<index]
@@ -289,7 +336,8 @@ struct Render: ParsableCommand {
     for file in files {
       for input in inputs where FileIdentity.same(file.path, input) {
         printError(
-          "raytrace: error: \(Self.name(of: file)) would overwrite '\(Self.escaped(input))', which the scene reads."
+          "raytrace: error: \(Self.name(of: file)) would overwrite "
+            + "'\(Self.escaped(input))', which the scene reads."
         )
         throw ExitCode.validationFailure
       }
@@ -320,7 +368,8 @@ struct Render: ParsableCommand {
     if all.contains(.shaded) { perPixel += 3 * scalar + 6 }
     let bytes = Double(width) * Double(height) * perPixel
     throw ValidationError(
-      "--size \(width) \(height) would need about \(formatted(bytes / 1_073_741_824, digits: 3)) GiB "
+      "--size \(width) \(height) would need about "
+        + "\(formatted(bytes / 1_073_741_824, digits: 3)) GiB "
         + "of memory; the limit is \(Self.maximumSide) pixels on a side and "
         + "\(Self.maximumPixels) pixels in all.")
   }
@@ -403,19 +452,25 @@ struct Render: ParsableCommand {
   ) {
     let settings = report.settings
     printError(
-      "scene: \(scenePath): \(report.spheres) spheres, \(report.planes) planes, "
-        + "\(report.triangles) triangles, \(report.ellipsoids) transformed spheres; "
+      "scene: \(scenePath): \(report.spheres) spheres, \(report.planes) "
+        + "planes, "
+        + "\(report.triangles) triangles, \(report.ellipsoids) transformed "
+        + "spheres; "
         + "nearest sphere by \(report.sphereSearch), "
-        + "nearest triangle by \(report.usesTriangleHierarchy ? "BVH" : "testing each")"
+        + "nearest triangle by "
+        + "\(report.usesTriangleHierarchy ? "BVH" : "testing each")"
     )
     printError(
       "size: \(settings.width)x\(settings.height), \(report.rays) rays, "
-        + "precision \(settings.precision.rawValue), intersection \(settings.method.rawValue), "
+        + "precision \(settings.precision.rawValue), intersection "
+        + "\(settings.method.rawValue), "
         + "engine \(settings.engine.rawValue), "
         + "style \(settings.style.rawValue), threads \(settings.threads)")
     printError(
       "outputs: \(settings.outputs.names.joined(separator: ", "))"
-        + "; left out: \(report.leftOut.isEmpty ? "nothing" : report.leftOut.joined(separator: ", "))"
+        + "; left out: "
+        + (report.leftOut.isEmpty
+          ? "nothing" : report.leftOut.joined(separator: ", "))
     )
     if report.texturedMaterials > 0 {
       printError(
@@ -433,7 +488,8 @@ struct Render: ParsableCommand {
       "render: \(seconds(report.renderSeconds)), "
         + "\(formatted(report.megaraysPerSecond, digits: 3)) Mrays/s"
         + (repeats > 0
-          ? " (median of \(repeats) repeated renders; first render \(seconds(report.firstRenderSeconds)))"
+          ? " (median of \(repeats) repeated renders; first render "
+            + "\(seconds(report.firstRenderSeconds)))"
           : ""))
     printError("write: \(seconds(report.writeSeconds))")
   }

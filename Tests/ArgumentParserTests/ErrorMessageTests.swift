@@ -40,6 +40,33 @@ final class ErrorMessageTests: XCTestCase {
     assertMessage(Paint.self, ["s", "-x"], "Unknown option '-x'")
   }
 
+  /// The real package validates a command before it reports what is left
+  /// over: `validate()`'s error wins over an unknown option or an unexpected
+  /// argument (raytrace parses twice to report those first).
+  func testError_ValidationBeforeUnknownOptionAndUnexpectedArgument() {
+    let both = "Give the scene either as an argument or with -input, not both."
+    assertMessage(RenderLike.self, ["s", "-input", "t", "--frob"], both)
+    assertMessage(RenderLike.self, ["s", "-input", "t", "-o", "a", "b"], both)
+  }
+
+  /// A missing or invalid value is reported before a help flag, as in the
+  /// real package; a validation error or unknown option is not.
+  func testError_MissingOrInvalidValueBeforeHelp() {
+    assertMessage(
+      RenderLike.self, ["s", "--shift", "--help"],
+      "Missing value for '--shift <shift>'")
+    assertMessage(
+      RenderLike.self, ["s", "--shift", "x", "--help"],
+      "The value 'x' is invalid for '--shift <shift>'")
+    for arguments in [
+      ["s", "-input", "t", "--help"], ["s", "--frob", "--help"],
+    ] {
+      XCTAssertThrowsError(try RenderLike.parse(arguments)) {
+        XCTAssertEqual(RenderLike.exitCode(for: $0), .success, "\(arguments)")
+      }
+    }
+  }
+
   func testError_UnknownOptionSuggestsClosestName() {
     assertMessage(
       Paint.self, ["s", "--outptu", "a.png"],

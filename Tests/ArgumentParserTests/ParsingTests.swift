@@ -92,15 +92,36 @@ final class ParsingTests: XCTestCase {
     XCTAssertEqual(try Lucky.parse([]).numbers, [7, 14])
   }
 
-  func testParse_NegativeNumbersAreValues() throws {
-    let command = try RenderLike.parse(
-      [
-        "s", "-depth", "-1", "5", "d.pfm", "--depth-range", "-0.5", "-.25",
-        "--shift", "-3",
-      ])
-    XCTAssertEqual(command.assignmentDepth, ["-1", "5", "d.pfm"])
-    XCTAssertEqual(command.depthRange, [-0.5, -0.25])
+  /// As in the real package, a token that starts with a dash is an option,
+  /// never the value of a `.next` or `.upToNextOption` option: `-1` too.
+  func testParse_DashValueIsAnOptionNotAValue() {
+    for arguments in [
+      ["s", "--shift", "-3"], ["s", "--depth-range", "-0.5", "1"],
+      ["s", "-depth", "-1", "5", "d.pfm"],
+    ] {
+      XCTAssertThrowsError(try RenderLike.parse(arguments), "\(arguments)") {
+        XCTAssertTrue(
+          RenderLike.message(for: $0).hasPrefix("Missing value for '"),
+          RenderLike.message(for: $0))
+      }
+    }
+  }
+
+  /// `.unconditional` and an attached value take a dash value, as in the
+  /// real package; `.upToNextOption` goes on after an attached value.
+  func testParse_UnconditionalOrAttachedDashValue() throws {
+    struct Shifts: ParsableCommand {
+      @Option(parsing: .unconditional) var shift = 0
+      @Option(parsing: .unconditionalSingleValue) var offsets: [Int] = []
+      @Option(parsing: .upToNextOption) var range: [Double] = []
+    }
+    let command = try Shifts.parse([
+      "--shift", "-3", "--offsets", "-1", "--offsets", "-2", "--range=-0.5",
+      "4",
+    ])
     XCTAssertEqual(command.shift, -3)
+    XCTAssertEqual(command.offsets, [-1, -2])
+    XCTAssertEqual(command.range, [-0.5, 4])
   }
 
   func testParse_DeclaredNameLikeNumberIsAnOption() throws {
@@ -108,8 +129,8 @@ final class ParsingTests: XCTestCase {
       @Flag(name: .customShort("1")) var one = false
       @Option(parsing: .upToNextOption) var values: [Int] = []
     }
-    let command = try Digits.parse(["--values", "-2", "-1"])
-    XCTAssertEqual(command.values, [-2])
+    let command = try Digits.parse(["--values", "2", "-1"])
+    XCTAssertEqual(command.values, [2])
     XCTAssertTrue(command.one)
   }
 

@@ -59,6 +59,11 @@ final class SubcommandTests: XCTestCase {
       (["paint", "--help"], Draw.helpMessage(for: Paint.self)),
       (["help", "paint"], Draw.helpMessage(for: Paint.self)),
       (["report", "-h"], Draw.helpMessage(for: Report.self)),
+      // As in the real package: a help flag before the default subcommand
+      // is the root's only when it is the one argument.
+      (["scene.txt", "--help"], Draw.helpMessage(for: Paint.self)),
+      (["--help", "scene.txt"], Draw.helpMessage(for: Paint.self)),
+      (["scene.txt", "--frob", "-h"], Draw.helpMessage(for: Paint.self)),
       (["help", "report"], Draw.helpMessage(for: Report.self)),
     ]
     for (arguments, expected) in cases {

@@ -99,6 +99,73 @@ final class CommandLineTests: XCTestCase {
     }
   }
 
+  /// As with swift-argument-parser: after a scene, `--help` is `render`'s.
+  func testHelp_SceneThenHelpIsRenderHelp() throws {
+    let render = try run(["render", "--help"])
+    XCTAssertTrue(
+      render.stdout.contains("USAGE: raytrace render "), render.stdout)
+    for arguments in [
+      ["scenes/spheres.txt", "--help"], ["--help", "scenes/spheres.txt"],
+      ["scenes/spheres.txt", "--outptu", "a.png", "-h"],
+    ] {
+      let outcome = try run(arguments)
+      XCTAssertEqual(outcome.status, 0, "\(arguments)")
+      XCTAssertEqual(outcome.stdout, render.stdout, "\(arguments)")
+    }
+  }
+
+  /// An unknown option is named before what validation finds (here, that
+  /// nothing is rendered: `a.png` is not an output), with either parser.
+  func testUsage_UnknownOptionBeforeValidation() throws {
+    let outcome = try run(["scenes/spheres.txt", "--outptu", "a.png"])
+    XCTAssertEqual(outcome.status, 64)
+    XCTAssertTrue(
+      outcome.stderr.hasPrefix(
+        "Error: Unknown option '--outptu'. Did you mean '--output'?\n"),
+      outcome.stderr)
+    let extra = try run(["scenes/spheres.txt", "extra1", "extra2"])
+    XCTAssertEqual(extra.status, 64)
+    XCTAssertTrue(
+      extra.stderr.hasPrefix(
+        "Error: 2 unexpected arguments: 'extra1', 'extra2'\n"), extra.stderr)
+  }
+
+  /// Negative depth ranges, as `--depth-range` and as the assignment's
+  /// `-depth MIN MAX FILE`, with either parser; the same image either way.
+  func testUsage_NegativeDepthRanges() throws {
+    let cases: [(String, [String])] = [
+      ("a.png", ["--depth-range", "-1", "20"]),
+      ("b.png", ["--depth-range=-1", "20"]),
+      ("c.png", ["-depth", "-1", "20"]),
+    ]
+    for (name, range) in cases {
+      var arguments = [
+        "-input", "scenes/spheres.txt", "-size", "16", "12",
+      ]
+      arguments += range
+      if range[0] != "-depth" { arguments.append("--depth") }
+      arguments.append(folder + "/" + name)
+      let outcome = try run(arguments)
+      XCTAssertEqual(outcome.status, 0, "\(arguments): \(outcome.stderr)")
+    }
+    XCTAssertEqual(try read("a.png"), try read("b.png"))
+    XCTAssertEqual(try read("a.png"), try read("c.png"))
+    let both = try run([
+      "scenes/spheres.txt", "--depth-range", "-10", "-1", "--depth",
+      folder + "/d.png",
+    ])
+    XCTAssertEqual(both.status, 0, both.stderr)
+    let reversed = try run([
+      "scenes/spheres.txt", "--depth-range", "2", "-1", "--depth",
+      folder + "/e.png",
+    ])
+    XCTAssertEqual(reversed.status, 64)
+    XCTAssertTrue(
+      reversed.stderr.contains(
+        "--depth-range needs finite MIN < MAX; got 2.0 -1.0."),
+      reversed.stderr)
+  }
+
   func testUsage_NoOutputIsExit64() throws {
     let outcome = try run(["scenes/spheres.txt"])
     XCTAssertEqual(outcome.status, 64)
