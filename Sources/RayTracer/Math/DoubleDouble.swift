@@ -94,7 +94,10 @@ extension DoubleDouble {
   @inlinable
   static func normalized(_ a: Double, _ b: Double) -> DoubleDouble {
     let (hi, lo) = fastTwoSum(a, b)
-    guard hi.isFinite else { return DoubleDouble(uncheckedHi: hi, lo: 0) }
+    guard hi.isFinite else {
+      // An infinite a stays (b may be an overflow's −∞ or NaN).
+      return DoubleDouble(uncheckedHi: a.isFinite ? hi : a, lo: 0)
+    }
     guard lo != 0 else { return DoubleDouble(uncheckedHi: hi, lo: 0) }
     // The value's leading bit: one below hi's when hi is a power of two
     // and lo takes the other sign.
@@ -137,6 +140,7 @@ extension DoubleDouble {
     -> DoubleDouble
   {
     let (s, e) = fastTwoSum(q0, q1)
+    guard s.isFinite else { return DoubleDouble(uncheckedHi: s, lo: 0) }
     let (t, f) = Compensated.twoSum(e, q2)
     let (h, l) = fastTwoSum(s, t)
     return normalized(h, l + f)
