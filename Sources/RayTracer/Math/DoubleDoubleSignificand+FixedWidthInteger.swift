@@ -1,7 +1,6 @@
 extension DoubleDoubleSignificand: FixedWidthInteger, UnsignedInteger {
   public typealias IntegerLiteralType = UInt64
   public typealias Magnitude = DoubleDoubleSignificand
-  public typealias Words = [UInt]
 
   @inlinable
   public init(integerLiteral value: UInt64) {
@@ -18,16 +17,27 @@ extension DoubleDoubleSignificand: FixedWidthInteger, UnsignedInteger {
   @inlinable public static var min: Self { Self(high: 0, low: 0) }
   @inlinable public var magnitude: Self { self }
 
-  /// Least significant word first.
-  public var words: [UInt] {
-    #if _pointerBitWidth(_64)
-      return [UInt(truncatingIfNeeded: low), UInt(truncatingIfNeeded: high)]
-    #else
-      return [low, low >> 32, high, high >> 32].map {
-        UInt(truncatingIfNeeded: $0)
-      }
-    #endif
+  /// The words, least significant first, without allocating: the standard
+  /// library's conversions to other integers read them.
+  @frozen
+  public struct Words: RandomAccessCollection, Sendable {
+    public let value: DoubleDoubleSignificand
+
+    @inlinable
+    public init(value: DoubleDoubleSignificand) { self.value = value }
+
+    @inlinable public var startIndex: Int { 0 }
+    @inlinable public var endIndex: Int { 128 / UInt.bitWidth }
+
+    @inlinable
+    public subscript(position: Int) -> UInt {
+      precondition(position >= 0 && position < endIndex, "index out of range")
+      let shifted = value.shiftedRight(position * UInt.bitWidth)
+      return UInt(truncatingIfNeeded: shifted.low)
+    }
   }
+
+  @inlinable public var words: Words { Words(value: self) }
 
   @inlinable public var nonzeroBitCount: Int {
     high.nonzeroBitCount + low.nonzeroBitCount
@@ -113,6 +123,21 @@ extension DoubleDoubleSignificand: FixedWidthInteger, UnsignedInteger {
   ) -> (quotient: Self, remainder: Self) {
     precondition(self != 0, "division by zero")
     precondition(dividend.high < self, "quotient overflows 128 bits")
+    // Fast paths for what the standard library's conversions divide: by
+    // a power of two, and within 64 bits.
+    if dividend.high == 0 {
+      if nonzeroBitCount == 1 {
+        let mask = self.subtractingReportingOverflow(1).partialValue
+        return (
+          dividend.low.shiftedRight(trailingZeroBitCount),
+          dividend.low & mask
+        )
+      }
+      if high == 0 && dividend.low.high == 0 {
+        let (q, r) = dividend.low.low.quotientAndRemainder(dividingBy: low)
+        return (Self(high: 0, low: q), Self(high: 0, low: r))
+      }
+    }
     var remainder = dividend.high
     var rest = dividend.low
     var quotient: Self = 0

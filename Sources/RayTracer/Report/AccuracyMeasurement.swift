@@ -42,6 +42,9 @@ public struct AccuracyMeasurement: Sendable {
     var disagreements = 0
     var maxAngle = 0.0
     let hasNormals = !buffers.normals.isEmpty && !reference.normals.isEmpty
+    // Converted once: the interior test below reads each up to 18 times,
+    // and a generic conversion from a DoubleDouble reference is slow.
+    let referenceNormals = reference.normals.map { Vector3<Double>($0) }
     for pixel in buffers.depth.indices {
       let t = buffers.depth[pixel]
       let want = reference.depth[pixel]
@@ -57,7 +60,7 @@ public struct AccuracyMeasurement: Sendable {
             maxAngle,
             angleInDegrees(
               Vector3<Double>(buffers.normals[pixel]),
-              Vector3<Double>(reference.normals[pixel])))
+              referenceNormals[pixel]))
         }
       default:
         disagreements += 1
@@ -80,9 +83,8 @@ public struct AccuracyMeasurement: Sendable {
               continue pixels
             }
             if hasNormals {
-              let a = Vector3<Double>(reference.normals[pixel])
-              let b = Vector3<Double>(
-                reference.normals[pixel + dy * width + dx])
+              let a = referenceNormals[pixel]
+              let b = referenceNormals[pixel + dy * width + dx]
               // cos 10° = 0.985
               guard a.dot(b) >= 0.985 else { continue pixels }
             }
