@@ -16,3 +16,4 @@ extension Precision: ExpressibleByArgument {}
 extension IntersectionMethod: ExpressibleByArgument {}
 extension PixelFilter: ExpressibleByArgument {}
 extension Engine: ExpressibleByArgument {}
+extension ReferencePrecision: ExpressibleByArgument {}
