@@ -1,14 +1,7 @@
 import RealModule
 
-#if canImport(Glibc)
-  import Glibc
-#elseif canImport(Darwin)
-  import Darwin
-#elseif canImport(Musl)
-  import Musl
-#endif
-
-// The C library's Double functions, named at file scope where the names
+// The C library's Double functions (its module is imported for the whole
+// package in System/Platform.swift), named at file scope where the names
 // are not shadowed by DoubleDouble's static members below.
 private func cExp(_ x: Double) -> Double { exp(x) }
 private func cExpMinusOne(_ x: Double) -> Double { expm1(x) }
