@@ -34,8 +34,10 @@ private func cLogGamma(_ x: Double) -> Double { lgamma(x) }
 /// real package (every member below is one of its requirements or
 /// defaults, declared here on the type so neither world is ambiguous).
 ///
-/// Accuracy: `sqrt`, `hypot`, `pow(_:_:)` with an Int exponent and `root`
-/// are double-double accurate (stated on each). Every other function is
+/// Accuracy: `sqrt`, `hypot`, `pow(_:_:)` with an Int exponent, `root`,
+/// and `sin`, `cos` and `tan` for |x| < 2³⁰ are double-double accurate
+/// (stated on each; the tests' references rotate by them). Every other
+/// function is
 /// Double's C library function of `hi`, converted exactly: the accuracy of
 /// Double only (≈ 2⁻⁵³ relative, or absolute near zeros), not 2⁻¹⁰⁴. The
 /// reference path does not use them: it intersects in arithmetic and
@@ -151,17 +153,85 @@ extension DoubleDouble: Real {
   public static func log10(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cLog10)
   }
-  /// Through Double.
+  /// sin x in double-double for |x| < 2³⁰ (see `reducedQuarterTurn`),
+  /// within a few units of u² absolute; through Double beyond.
   public static func sin(_ x: DoubleDouble) -> DoubleDouble {
-    viaDouble(x, cSin)
+    guard let (r, quadrant) = reducedQuarterTurn(x) else {
+      return viaDouble(x, cSin)
+    }
+    switch quadrant {
+    case 0: return sinSeries(r)
+    case 1: return cosSeries(r)
+    case 2: return -sinSeries(r)
+    default: return -cosSeries(r)
+    }
   }
-  /// Through Double.
+  /// cos x in double-double for |x| < 2³⁰, within a few units of u²
+  /// absolute; through Double beyond.
   public static func cos(_ x: DoubleDouble) -> DoubleDouble {
-    viaDouble(x, cCos)
+    guard let (r, quadrant) = reducedQuarterTurn(x) else {
+      return viaDouble(x, cCos)
+    }
+    switch quadrant {
+    case 0: return cosSeries(r)
+    case 1: return -sinSeries(r)
+    case 2: return -cosSeries(r)
+    default: return sinSeries(r)
+    }
   }
-  /// Through Double.
+  /// sin x / cos x, in double-double for |x| < 2³⁰.
   public static func tan(_ x: DoubleDouble) -> DoubleDouble {
-    viaDouble(x, cTan)
+    guard reducedQuarterTurn(x) != nil else { return viaDouble(x, cTan) }
+    return sin(x) / cos(x)
+  }
+
+  /// x − k·π/2 and k mod 4 with k the nearest integer to x/(π/2), by π/2
+  /// in three Doubles (159 bits, Cody and Waite): the first two products
+  /// are exact and the third's rounding is below 2⁻¹⁶⁰·|k|, so r is within
+  /// a few units of u²·|r| + 2⁻¹³⁰ for |x| < 2³⁰. nil beyond, or for
+  /// non-finite x.
+  static func reducedQuarterTurn(
+    _ x: DoubleDouble
+  ) -> (DoubleDouble, quadrant: Int)? {
+    guard x.isFinite, x.hi.magnitude < 0x1p30 else { return nil }
+    let k = (x.hi * 0x1.45f3_06dc_9c88_3p-1).rounded(.toNearestOrEven)
+    let p1 = Compensated.twoProduct(k, 0x1.921f_b544_42d1_8p0)
+    let p2 = Compensated.twoProduct(k, 0x1.1a62_6331_45c0_7p-54)
+    let p3 = k * -0x1.f197_6b7e_d8fb_cp-110
+    let r =
+      x - DoubleDouble(p1.product, p1.error)
+      - DoubleDouble(p2.product, p2.error) - DoubleDouble(p3)
+    return (r, (Int(k) % 4 + 4) % 4)
+  }
+
+  /// Σ (−1)ⁱ r^(2i+1)/(2i+1)! for |r| ≤ π/4 (plus the reduction's slack),
+  /// until the terms fall below 2⁻¹¹⁰ of the sum: at most 14 terms, each
+  /// rounded within a few u² of itself.
+  static func sinSeries(_ r: DoubleDouble) -> DoubleDouble {
+    let square = r * r
+    var term = r
+    var sum = r
+    var n = 1.0
+    while term.magnitude > sum.magnitude * 0x1p-110 {
+      term = -(term * square) / DoubleDouble((n + 1) * (n + 2))
+      n += 2
+      sum = sum + term
+    }
+    return sum
+  }
+
+  /// Σ (−1)ⁱ r^(2i)/(2i)! for |r| ≤ π/4, as `sinSeries`.
+  static func cosSeries(_ r: DoubleDouble) -> DoubleDouble {
+    let square = r * r
+    var term: DoubleDouble = 1
+    var sum: DoubleDouble = 1
+    var n = 0.0
+    while term.magnitude > sum.magnitude * 0x1p-110 {
+      term = -(term * square) / DoubleDouble((n + 1) * (n + 2))
+      n += 2
+      sum = sum + term
+    }
+    return sum
   }
   /// Through Double.
   public static func asin(_ x: DoubleDouble) -> DoubleDouble {

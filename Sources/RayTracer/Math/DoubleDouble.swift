@@ -41,11 +41,12 @@
 ///   error terms of products underflow before that, from about 2⁻⁹¹⁶.
 /// - literals: `FloatLiteralType` is Double, so `0.1 as DoubleDouble` is
 ///   Double's 0.1, not 1/10 to 106 bits; write `DoubleDouble(1) / 10`.
-/// - `exp`, `log`, the trigonometric functions, `pow(_:_:)` with a real
-///   exponent and the rest of `RealFunctions` go through Double (see
+/// - `exp`, `log`, the inverse trigonometric functions, `pow(_:_:)` with a
+///   real exponent and the rest of `RealFunctions` go through Double (see
 ///   DoubleDouble+Real.swift); only `sqrt`, `hypot`, `pow(_:_:)` with an
-///   integer exponent and `root(_:2)` are double-double accurate. The
-///   reference path uses arithmetic and square roots only.
+///   integer exponent, `root` and `sin`, `cos`, `tan` (for |x| < 2³⁰) are
+///   double-double accurate. The reference path uses arithmetic and square
+///   roots only; the tests' references also rotate.
 /// - `addingProduct` is not fused: it rounds the product, then the sum.
 ///
 /// On x86 the reference path uses Float80 (64-bit significand, IEEE); this
