@@ -37,11 +37,12 @@ private func cLogGamma(_ x: Double) -> Double { lgamma(x) }
 /// Accuracy: `sqrt`, `hypot`, `pow(_:_:)` with an Int exponent, `root`,
 /// and `sin`, `cos` and `tan` for |x| < 2³⁰ are double-double accurate
 /// (stated on each; the tests' references rotate by them). Every other
-/// function is
-/// Double's C library function of `hi`, converted exactly: the accuracy of
-/// Double only (≈ 2⁻⁵³ relative, or absolute near zeros), not 2⁻¹⁰⁴. The
-/// reference path does not use them: it intersects in arithmetic and
-/// square roots, its camera rays made in the render's precision.
+/// function is Double's C library function of `hi`, converted exactly: the
+/// accuracy of Double only (≈ 2⁻⁵³ relative, or absolute near zeros), not
+/// 2⁻¹⁰⁴. The reference path does not use them: it intersects in
+/// arithmetic and square roots, its camera rays made in the render's
+/// precision. (MaterialTests' reference shading uses `pow(_:_:)` with a
+/// real exponent, at Double's accuracy where the reference is this type.)
 extension DoubleDouble: Real {
   /// Through Double, for the functions the reference path never uses.
   @inlinable
