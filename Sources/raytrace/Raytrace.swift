@@ -109,3 +109,4 @@ extension Precision: ExpressibleByArgument {}
 extension IntersectionMethod: ExpressibleByArgument {}
 extension PixelFilter: ExpressibleByArgument {}
 extension Engine: ExpressibleByArgument {}
+extension ReferencePrecision: ExpressibleByArgument {}

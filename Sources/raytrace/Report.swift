@@ -14,7 +14,8 @@ struct Report: ParsableCommand {
       Renders every scene with float and double, naive and stable, times each \
       (median of --runs renders after a warm-up), compares depth and normals \
       with the reference path (the same camera rays intersected in 80-bit \
-      extended precision) and prints a Markdown table. Relative errors are \
+      extended precision on x86, in double-double elsewhere; see \
+      --reference) and prints a Markdown table. Relative errors are \
       |t − t_ref| / t_ref; ε is 2^-23 for float and 2^-52 for double.
       """)
 
@@ -49,6 +50,12 @@ struct Report: ParsableCommand {
       valueName: "dir"))
   var heatmaps: String?
 
+  @Option(
+    help: ArgumentHelp(
+      "The reference's precision: float80 (x86 only, the default there) or double-double (the default elsewhere).",
+      valueName: "precision"))
+  var reference: ReferencePrecision = .platformDefault
+
   @Flag(
     help:
       """
@@ -79,6 +86,10 @@ struct Report: ParsableCommand {
     if let threads, threads < 1 {
       throw ValidationError("--threads must be at least 1.")
     }
+    guard reference.isAvailable else {
+      throw ValidationError(
+        "--reference float80 needs an x86 processor; use double-double.")
+    }
   }
 
   func run() throws {
@@ -105,31 +116,48 @@ struct Report: ParsableCommand {
       }
       let name = sceneName(path)
       for precision in Precision.allCases {
-        let reference = AccuracyRender.reference(
-          scene, width: width, height: height, rays: precision, threads: threads
-        )
-        for method in IntersectionMethod.allCases {
-          let (buffers, seconds) = AccuracyRender.render(
-            scene, width: width, height: height, precision: precision,
-            method: method, threads: threads, runs: runs)
-          let measurement = buffers.measured(against: reference)
-          let row = AccuracyRow(
-            scene: name, precision: precision, method: method, width: width,
-            height: height, seconds: seconds, measurement: measurement,
-            epsilon: buffers.epsilon)
-          print(row.markdown)
-          rows.append(row)
-          if let heatmaps {
-            let image = ErrorHeatmap.image(
-              measurement, width: width, height: height,
-              epsilon: buffers.epsilon)
-            encodedMaps.append(
-              (
-                PNGEncoder.encode(image),
-                "\(heatmaps)/\(name)-\(precision.rawValue)-"
-                  + "\(method.rawValue).png"
-              ))
+        // Generic over the reference's scalar, chosen by --reference.
+        func measureRows<R: RayScalar>(against reference: RenderBuffers<R>) {
+          for method in IntersectionMethod.allCases {
+            let (buffers, seconds) = AccuracyRender.render(
+              scene, width: width, height: height, precision: precision,
+              method: method, threads: threads, runs: runs)
+            let measurement = buffers.measured(against: reference)
+            let row = AccuracyRow(
+              scene: name, precision: precision, method: method,
+              width: width, height: height, seconds: seconds,
+              measurement: measurement, epsilon: buffers.epsilon)
+            print(row.markdown)
+            rows.append(row)
+            if let heatmaps {
+              let image = ErrorHeatmap.image(
+                measurement, width: width, height: height,
+                epsilon: buffers.epsilon)
+              encodedMaps.append(
+                (
+                  PNGEncoder.encode(image),
+                  "\(heatmaps)/\(name)-\(precision.rawValue)-"
+                    + "\(method.rawValue).png"
+                ))
+            }
           }
+        }
+        func referenceBuffers<R: RayScalar>(
+          in _: R.Type
+        ) -> RenderBuffers<R> {
+          AccuracyRender.reference(
+            scene, width: width, height: height, rays: precision,
+            threads: threads, in: R.self)
+        }
+        switch reference {
+        case .doubleDouble:
+          measureRows(against: referenceBuffers(in: DoubleDouble.self))
+        case .float80:
+          #if (arch(i386) || arch(x86_64)) && !os(Windows) && !os(Android)
+            measureRows(against: referenceBuffers(in: Float80.self))
+          #else
+            preconditionFailure("refused by validate()")
+          #endif
         }
       }
     }

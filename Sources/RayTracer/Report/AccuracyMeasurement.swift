@@ -5,7 +5,8 @@ import RealModule
 ///
 /// The reference intersects the very rays the render traced (generated in
 /// the render's precision, converted exactly) in `ReferenceScalar` (Float80
-/// on x86, 64-bit significand) with the stable camera-relative method, its
+/// on x86, 64-bit significand; `DoubleDouble`, 106 bits, where there is no
+/// Float80) with the stable camera-relative method, its
 /// constants computed from the scene's Double values in twice Double's
 /// precision. What is measured is therefore the error of the intersection,
 /// not a difference in where the camera's rays point.
@@ -41,6 +42,9 @@ public struct AccuracyMeasurement: Sendable {
     var disagreements = 0
     var maxAngle = 0.0
     let hasNormals = !buffers.normals.isEmpty && !reference.normals.isEmpty
+    // Converted once: the interior test below reads each up to 18 times,
+    // and a generic conversion from a DoubleDouble reference is slow.
+    let referenceNormals = reference.normals.map { Vector3<Double>($0) }
     for pixel in buffers.depth.indices {
       let t = buffers.depth[pixel]
       let want = reference.depth[pixel]
@@ -56,7 +60,7 @@ public struct AccuracyMeasurement: Sendable {
             maxAngle,
             angleInDegrees(
               Vector3<Double>(buffers.normals[pixel]),
-              Vector3<Double>(reference.normals[pixel])))
+              referenceNormals[pixel]))
         }
       default:
         disagreements += 1
@@ -79,9 +83,8 @@ public struct AccuracyMeasurement: Sendable {
               continue pixels
             }
             if hasNormals {
-              let a = Vector3<Double>(reference.normals[pixel])
-              let b = Vector3<Double>(
-                reference.normals[pixel + dy * width + dx])
+              let a = referenceNormals[pixel]
+              let b = referenceNormals[pixel + dy * width + dx]
               // cos 10° = 0.985
               guard a.dot(b) >= 0.985 else { continue pixels }
             }
@@ -164,10 +167,22 @@ public enum AccuracyRender {
     _ scene: Scene, width: Int, height: Int, rays precision: Precision,
     style: ImageStyle = .course, threads: Int = 1
   ) -> RenderBuffers<ReferenceScalar> {
+    reference(
+      scene, width: width, height: height, rays: precision, style: style,
+      threads: threads, in: ReferenceScalar.self)
+  }
+
+  /// The same reference intersected in `R`: on x86 the tests and `raytrace
+  /// report --reference` run it in DoubleDouble, the reference of platforms
+  /// without Float80, as well as in Float80.
+  public static func reference<R: RayScalar>(
+    _ scene: Scene, width: Int, height: Int, rays precision: Precision,
+    style: ImageStyle = .course, threads: Int = 1, in _: R.Type
+  ) -> RenderBuffers<R> {
     let settings = RenderSettings(
       width: width, height: height, outputs: [.depth, .normals], style: style,
       method: .stable, precision: precision, threads: threads)
-    let compiled = CompiledScene<StableKernel<ReferenceScalar>>(scene)
+    let compiled = CompiledScene<StableKernel<R>>(scene)
     switch precision {
     case .float:
       return Renderer.render(compiled, settings: settings, rays: Float.self)

@@ -349,6 +349,25 @@ final class CommandLineTests: XCTestCase {
     XCTAssertEqual(files().filter { $0.hasSuffix(".png") }.count, 4)
   }
 
+  /// --reference double-double runs everywhere (on x86 it replaces the
+  /// default Float80); an unknown precision is a usage error.
+  func testReport_DoubleDoubleReference() throws {
+    let outcome = try run([
+      "report", "scenes/single-sphere.txt", "--size", "8", "8", "--runs", "1",
+      "--skip-antialiasing", "--reference", "double-double",
+    ])
+    XCTAssertEqual(outcome.status, 0, outcome.stderr)
+    let lines = outcome.stdout.split(separator: "\n")
+    XCTAssertEqual(lines.count, 2 + 4, outcome.stdout)
+    XCTAssertTrue(
+      lines[5].hasPrefix("| single-sphere | double | stable |"),
+      String(lines[5]))
+    let unknown = try run([
+      "report", "scenes/single-sphere.txt", "--reference", "quad",
+    ])
+    XCTAssertEqual(unknown.status, 64, unknown.stderr)
+  }
+
   func testReport_AntialiasingRows() throws {
     let outcome = try run([
       "report", "scenes/single-sphere.txt", "--size", "8", "8", "--runs", "1",

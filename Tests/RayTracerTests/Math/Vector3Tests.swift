@@ -72,11 +72,20 @@ final class Vector3Tests: XCTestCase {
     for vector in extremes {
       let unit = vector.normalized()
       // The reference scales by 2^−exponent of the largest component
-      // (exact) before squaring in the wider type.
-      let scale = ReferenceScalar(
-        sign: .plus, exponent: -ReferenceScalar(vector.maxMagnitude).exponent,
-        significand: 1)
-      let scaled = vector.reference * scale
+      // (exact) before squaring in the wider type; component by component,
+      // since 2^1074 itself overflows a reference with Double's exponent
+      // range (DoubleDouble, where there is no Float80).
+      let shift = -ReferenceScalar(vector.maxMagnitude).exponent
+      func scaled(_ c: ReferenceScalar) -> ReferenceScalar {
+        c == 0
+          ? c
+          : ReferenceScalar(
+            sign: c.sign, exponent: c.exponent + shift,
+            significand: c.significand)
+      }
+      let reference = vector.reference
+      let scaled = Vector3(
+        scaled(reference.x), scaled(reference.y), scaled(reference.z))
       let want = scaled / scaled.length
       assertRelativeError(unit, want, ulps: 2, "\(T.self) \(vector)")
     }
