@@ -52,7 +52,8 @@ struct Report: ParsableCommand {
 
   @Option(
     help: ArgumentHelp(
-      "The reference's precision: float80 (x86 only, the default there) or double-double (the default elsewhere).",
+      "The reference's precision: float80 (x86 only, the default there) "
+        + "or double-double (the default elsewhere).",
       valueName: "precision"))
   var reference: ReferencePrecision = .platformDefault
 
