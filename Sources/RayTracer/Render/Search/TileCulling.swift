@@ -8,17 +8,7 @@ struct CulledSpheres: NearestSphereSearch {
   func nearestSphere<Kernel: IntersectionKernel>(
     _ ray: CameraRay<Kernel.Scalar>, in scene: CompiledScene<Kernel>
   ) -> NearestHit<Kernel.Scalar, CompiledScene<Kernel>.Nearest> {
-    var nearest = NearestHit<Kernel.Scalar, CompiledScene<Kernel>.Nearest>(
-      before: .infinity)
-    scene.spheres.withUnsafeBufferPointer { records in
-      for candidate in candidates {
-        let index = Int(candidate)
-        nearest.test(.sphere(index)) {
-          Kernel.intersect(records[index], ray, before: $0)
-        }
-      }
-    }
-    return nearest
+    scene.nearestSphere(ray, among: candidates.lazy.map { Int($0) })
   }
 }
 
