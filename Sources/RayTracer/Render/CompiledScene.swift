@@ -98,7 +98,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     // Triangles are never culled per tile: their hierarchy starts at the
     // flat loop's break-even however high the spheres' threshold is set.
     compileMeshesAndEllipsoids(
-      all, eye: eyeDouble,
+      consume all, eye: eyeDouble,
       hierarchyThreshold: Swift.min(
         hierarchyThreshold, BoundingVolumeHierarchy<Scalar>.defaultThreshold))
   }
@@ -140,7 +140,8 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
 
   /// The triangles and ellipsoids of `all`, compiled for this kernel.
   private mutating func compileMeshesAndEllipsoids(
-    _ all: Primitives<Double>, eye: Vector3<Double>, hierarchyThreshold: Int
+    _ all: consuming Primitives<Double>, eye: Vector3<Double>,
+    hierarchyThreshold: Int
   ) {
     let cameraRelative = Kernel.frameOrigin(eye: eye) == .zero
     func frame(_ point: Vector3<Double>) -> Vector3<Scalar> {
@@ -153,6 +154,8 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
         component(point.x, eye.x), component(point.y, eye.y),
         component(point.z, eye.z))
     }
+    triangles.reserveCapacityOnHugePages(all.triangles.count)
+    triangleMaterials.reserveCapacity(all.triangles.count)
     for triangle in all.triangles {
       let record = TriangleRecord<Scalar>(
         v0: frame(triangle.v0), v1: frame(triangle.v1), v2: frame(triangle.v2),
@@ -174,31 +177,33 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
           })
       }
     }
+    // The model's triangles are not needed again: freed before the build.
+    all.triangles = []
     if triangles.count >= hierarchyThreshold {
-      let boxes = triangles.map { record in
-        let lower = Vector3(
-          Swift.min(record.v0.x, record.v1.x, record.v2.x),
-          Swift.min(record.v0.y, record.v1.y, record.v2.y),
-          Swift.min(record.v0.z, record.v1.z, record.v2.z))
-        let upper = Vector3(
-          Swift.max(record.v0.x, record.v1.x, record.v2.x),
-          Swift.max(record.v0.y, record.v1.y, record.v2.y),
-          Swift.max(record.v0.z, record.v1.z, record.v2.z))
-        // Rounded out by a few ulps of the largest coordinate: the
-        // watertight test decides on the sheared, rounded vertices.
-        let pad =
-          4 * Scalar.ulpOfOne
-          * Swift.max(lower.maxMagnitude, upper.maxMagnitude)
-        let padding = Vector3(pad, pad, pad)
-        return (lower: lower - padding, upper: upper + padding)
-      }
-      let bvh = BoundingVolumeHierarchy<Scalar>(boxes: boxes)
-      triangles = bvh.order.map { triangles[Int($0)] }
-      triangleMaterials = bvh.order.map { triangleMaterials[Int($0)] }
-      if !triangleTextureCoordinates.isEmpty {
-        triangleTextureCoordinates = bvh.order.map {
-          triangleTextureCoordinates[Int($0)]
+      let bvh = triangles.withUnsafeBufferPointer { records in
+        BoundingVolumeHierarchy<Scalar>(count: records.count) {
+          let record = records[$0]
+          let lower = Vector3(
+            Swift.min(record.v0.x, record.v1.x, record.v2.x),
+            Swift.min(record.v0.y, record.v1.y, record.v2.y),
+            Swift.min(record.v0.z, record.v1.z, record.v2.z))
+          let upper = Vector3(
+            Swift.max(record.v0.x, record.v1.x, record.v2.x),
+            Swift.max(record.v0.y, record.v1.y, record.v2.y),
+            Swift.max(record.v0.z, record.v1.z, record.v2.z))
+          // Rounded out by a few ulps of the largest coordinate: the
+          // watertight test decides on the sheared, rounded vertices.
+          let pad =
+            4 * Scalar.ulpOfOne
+            * Swift.max(lower.maxMagnitude, upper.maxMagnitude)
+          let padding = Vector3(pad, pad, pad)
+          return (lower: lower - padding, upper: upper + padding)
         }
+      }
+      bvh.arrange(&triangles)
+      bvh.arrange(&triangleMaterials)
+      if !triangleTextureCoordinates.isEmpty {
+        bvh.arrange(&triangleTextureCoordinates)
       }
       triangleHierarchy = bvh
       wideTriangleHierarchy = WideHierarchy(

@@ -85,25 +85,36 @@ public struct OBJMesh: Hashable, Sendable {
   public func makeTriangles<S: RayScalar>(
     materialIndex: Int, as _: S.Type = S.self
   ) -> [Triangle<S>] {
-    triangles.map { face in
-      let v = face.vertexIndices
-      let normals = face.normalIndices.map { n in
-        Triangle<S>.VertexNormals(
-          Vector3<S>(self.normals[Int(n.x)]),
-          Vector3<S>(self.normals[Int(n.y)]),
-          Vector3<S>(self.normals[Int(n.z)]))
-      }
-      let coordinates = face.textureIndices.map { t in
-        Triangle<S>.TextureCoordinates(
-          TextureCoordinate<S>(textureCoordinates[Int(t.x)]),
-          TextureCoordinate<S>(textureCoordinates[Int(t.y)]),
-          TextureCoordinate<S>(textureCoordinates[Int(t.z)]))
-      }
-      return Triangle<S>(
-        Vector3<S>(vertices[Int(v.x)]), Vector3<S>(vertices[Int(v.y)]),
-        Vector3<S>(vertices[Int(v.z)]), vertexNormals: normals,
-        textureCoordinates: coordinates, materialIndex: materialIndex)
+    triangles.indices.map {
+      triangle(at: $0, materialIndex: materialIndex, as: S.self)
     }
+  }
+
+  /// The model triangle of `triangles[index]`, as `makeTriangles` makes
+  /// it, for callers that store each one straight into their own array.
+  ///
+  /// - Precondition: `triangles.indices.contains(index)`.
+  public func triangle<S: RayScalar>(
+    at index: Int, materialIndex: Int, as _: S.Type = S.self
+  ) -> Triangle<S> {
+    let face = triangles[index]
+    let v = face.vertexIndices
+    let normals = face.normalIndices.map { n in
+      Triangle<S>.VertexNormals(
+        Vector3<S>(self.normals[Int(n.x)]),
+        Vector3<S>(self.normals[Int(n.y)]),
+        Vector3<S>(self.normals[Int(n.z)]))
+    }
+    let coordinates = face.textureIndices.map { t in
+      Triangle<S>.TextureCoordinates(
+        TextureCoordinate<S>(textureCoordinates[Int(t.x)]),
+        TextureCoordinate<S>(textureCoordinates[Int(t.y)]),
+        TextureCoordinate<S>(textureCoordinates[Int(t.z)]))
+    }
+    return Triangle<S>(
+      Vector3<S>(vertices[Int(v.x)]), Vector3<S>(vertices[Int(v.y)]),
+      Vector3<S>(vertices[Int(v.z)]), vertexNormals: normals,
+      textureCoordinates: coordinates, materialIndex: materialIndex)
   }
 }
 

@@ -212,11 +212,21 @@ extension BoundingVolumeHierarchy {
     boxes: [(lower: Vector3<Scalar>, upper: Vector3<Scalar>)],
     concurrentFrom: Int = 1 << 16
   ) {
-    var (primitives, summary) = boxes.withUnsafeBufferPointer { boxes in
-      Self.primitives(count: boxes.count, concurrentFrom: concurrentFrom) {
-        boxes[$0]
-      }
+    self = boxes.withUnsafeBufferPointer { boxes in
+      Self(count: boxes.count, concurrentFrom: concurrentFrom) { boxes[$0] }
     }
+  }
+
+  /// Builds over `count` boxes given by `box` in the original order, as
+  /// `init(boxes:concurrentFrom:)` does, without an array of them: `box`
+  /// is called once per index, from two threads from `concurrentFrom`
+  /// boxes on, so it must be safe to call concurrently.
+  init(
+    count: Int, concurrentFrom: Int = 1 << 16,
+    box: (Int) -> (lower: Vector3<Scalar>, upper: Vector3<Scalar>)
+  ) {
+    var (primitives, summary) = Self.primitives(
+      count: count, concurrentFrom: concurrentFrom, box: box)
     self.init(&primitives, summary, concurrentFrom: concurrentFrom)
   }
 
