@@ -24,7 +24,7 @@ public func fuzzPlistScene(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt {
     // Compared as bytes: a key starting with a combining mark joins the
     // space before it into one Character, which a Character comparison
     // would take for a missing " error: " (found by this fuzzer).
-    guard description.utf8.starts(with: "fuzz.plist: error: ".utf8),
+    guard isErrorLine(Array(description.utf8)),
       !description.unicodeScalars.contains(where: {
         $0.value < 0x20 || $0.value == 0x7F
       })
@@ -50,4 +50,19 @@ public func fuzzPlistScene(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt {
   guard buffers.depth.allSatisfy({ $0 == .infinity || ($0.isFinite && $0 > 0) })
   else { fatalError("fuzz invariant: a depth that is neither a miss nor > 0") }
   return 0
+}
+
+/// Whether `line` starts `fuzz.plist: error: `, `fuzz.plist:LINE: error: `
+/// or `fuzz.plist:LINE:COLUMN: error: ` (the three forms of `SceneError`).
+func isErrorLine(_ line: [UInt8]) -> Bool {
+  let file = Array("fuzz.plist".utf8)
+  guard line.starts(with: file) else { return false }
+  var rest = line[file.count...]
+  for _ in 0..<2 {
+    guard rest.first == UInt8(ascii: ":") else { break }
+    let digits = rest.dropFirst().prefix { (48...57).contains($0) }
+    guard !digits.isEmpty else { break }
+    rest = rest.dropFirst(1 + digits.count)
+  }
+  return rest.starts(with: Array(": error: ".utf8))
 }
