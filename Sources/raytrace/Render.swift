@@ -351,7 +351,8 @@ struct Render: ParsableCommand {
     do {
       scene = try SceneReader.read(
         contentsOf: plan.scenePath,
-        options: SceneOptions(style: plan.settings.style))
+        options: SceneOptions(
+          style: plan.settings.style, precision: plan.settings.precision))
     } catch {
       printError(error.description)
       throw ExitCode.failure

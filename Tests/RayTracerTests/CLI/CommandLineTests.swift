@@ -140,6 +140,29 @@ final class CommandLineTests: XCTestCase {
     XCTAssertFalse(files().contains("out.png"))
   }
 
+  /// A value the chosen precision cannot hold is an error, not an empty
+  /// image: Double holds it, Float does not.
+  func testSceneError_ValueBeyondFloatExit1() throws {
+    let scene = folder + "/big.txt"
+    try
+      (SceneParserTests.camera
+      + "Group { numObjects 1 Sphere { center 0 0 0 radius 1e150 } }\n")
+      .write(toFile: scene, atomically: true, encoding: .utf8)
+    let outcome = try run([
+      scene, "--precision", "float", "-o", folder + "/out.png",
+    ])
+    XCTAssertEqual(outcome.status, 1)
+    XCTAssertEqual(
+      outcome.stderr,
+      "\(scene):2:51: error: '1e150' is beyond the finite range of float "
+        + "(±3.4028235e+38); use --precision double\n")
+    XCTAssertFalse(files().contains("out.png"))
+    let double = try run([
+      scene, "--precision", "double", "-o", folder + "/out.png",
+    ])
+    XCTAssertEqual(double.status, 0, double.stderr)
+  }
+
   func testSceneError_MissingFile() throws {
     let outcome = try run([folder + "/none.txt", "-o", folder + "/out.png"])
     XCTAssertEqual(outcome.status, 1)
