@@ -6,8 +6,14 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   public typealias Scalar = Kernel.Scalar
 
   public let camera: PerspectiveCamera<Scalar>
+  /// The eye in the frame of the records, scaled as they are.
   public let rayOrigin: Vector3<Scalar>
+  /// The eye in the world, for shading.
   public let eye: Vector3<Scalar>
+  /// 2^k: the records hold the scene's lengths times 2^−k, so a search's
+  /// t is the world's t times 2^−k, exactly (`LengthScale`); 1 for every
+  /// scene within the precision's comfortable range.
+  public let lengthScale: Scalar
   var spheres: [Kernel.SphereRecord]
   var sphereMaterials: [Int32]
   var planes: [Kernel.PlaneRecord]
@@ -65,11 +71,25 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     hierarchyThreshold: Int = BoundingVolumeHierarchy<Scalar>.defaultThreshold,
     projectionThreshold: Int = .max
   ) {
-    let eyeDouble = scene.camera.center
     camera = PerspectiveCamera(scene.camera)
-    eye = Vector3(eyeDouble)
+    eye = Vector3(scene.camera.center)
+    // Lengths scaled by 2^−k when the scene is beyond the precision's
+    // comfortable range (`LengthScale`); k = 0, nothing scaled, otherwise.
+    let unscaled = scene.root.flattened()
+    let exponent = LengthScale.exponent(
+      unscaled, eye: scene.camera.center, as: Scalar.self)
+    lengthScale = Scalar(LengthScale.factor(exponent))
+    let all: Primitives<Double>
+    let eyeDouble: Vector3<Double>
+    if exponent == 0 {
+      (all, eyeDouble) = (unscaled, scene.camera.center)
+    } else {
+      let factor = LengthScale.factor(-exponent)
+      (all, eyeDouble) = (
+        unscaled.scaled(by: factor), scene.camera.center * factor
+      )
+    }
     rayOrigin = Kernel.frameOrigin(eye: eyeDouble)
-    let all = scene.root.flattened()
     let (sphereList, planeList) = (all.spheres, all.planes)
     spheres = Self.map(sphereList) { Kernel.makeSphere($0, eye: eyeDouble) }
     sphereMaterials = sphereList.map {

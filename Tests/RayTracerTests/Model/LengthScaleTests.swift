@@ -1,0 +1,131 @@
+import XCTest
+
+@testable import RayTracer
+
+/// Rendering a scene with its lengths rescaled by a power of two
+/// (`LengthScale`) changes nothing but the range it works in: t scales
+/// exactly, normals and hits are the same bits.
+final class LengthScaleTests: XCTestCase {
+  /// A sphere, a plane, a triangle and an ellipsoid, every length times
+  /// `f` (a power of two, so the scene's values are exact multiples).
+  func scene(_ f: Double) throws -> Scene {
+    let camera = try XCTUnwrap(
+      PerspectiveCamera(
+        center: Vector3(0.3, 0.2, 3) * f, direction: Vector3(-0.1, -0.1, -1),
+        up: Vector3(0, 1, 0), angle: 50))
+    let stretch = try XCTUnwrap(
+      Transform(
+        matrix: .translation(Vector3(0.8, 0.6, 0.5) * f)
+          * .scale(Vector3(0.2, 0.4, 0.2) * f),
+        object: .sphere(Sphere(center: .zero, radius: 1))))
+    return Scene(
+      camera: camera,
+      root: Group([
+        .sphere(Sphere(center: .zero, radius: f)),
+        .plane(Plane(normal: Vector3(0, 1, 0), offset: -f)),
+        .triangle(
+          Triangle(
+            Vector3(-1.2, -0.9, 0.4) * f, Vector3(-0.4, -0.9, 0.6) * f,
+            Vector3(-0.8, 0.1, 0.5) * f)),
+        .transform(stretch),
+      ]))
+  }
+
+  func depthsAndNormals(
+    _ scene: Scene, _ precision: Precision
+  ) -> (depth: [Double], normals: [Vector3<Double>]) {
+    let (buffers, _) = AccuracyRender.render(
+      scene, width: 48, height: 40, precision: precision, method: .stable,
+      runs: 0)
+    switch buffers {
+    case .float(let b):
+      return (b.depth.map(Double.init), b.normals.map { Vector3($0) })
+    case .double(let b): return (b.depth, b.normals)
+    }
+  }
+
+  func checkPowerOfTwoScales(_ precision: Precision, _ exponents: [Int])
+    throws
+  {
+    let unit = depthsAndNormals(try scene(1), precision)
+    XCTAssertGreaterThan(unit.depth.filter(\.isFinite).count, 1000)
+    for exponent in exponents {
+      let f = LengthScale.factor(exponent)
+      let scaled = depthsAndNormals(try scene(f), precision)
+      for pixel in unit.depth.indices {
+        XCTAssertEqual(
+          scaled.depth[pixel], unit.depth[pixel] * f,
+          "2^\(exponent) \(precision): t at pixel \(pixel)")
+        XCTAssertEqual(
+          scaled.normals[pixel], unit.normals[pixel],
+          "2^\(exponent) \(precision): normal at pixel \(pixel)")
+      }
+    }
+  }
+
+  func testRender_PowerOfTwoScalesGiveTheSameImage_Float() throws {
+    try checkPowerOfTwoScales(.float, [-100, -70, -40, 40, 70, 100])
+  }
+
+  func testRender_PowerOfTwoScalesGiveTheSameImage_Double() throws {
+    try checkPowerOfTwoScales(.double, [-1000, -600, -300, 300, 600, 1000])
+  }
+
+  func testExponent_ZeroWithinTheComfortableRange() {
+    var all = Primitives<Double>()
+    all.spheres = [Sphere(center: Vector3(1e9, 0, 0), radius: 1e-6)]
+    XCTAssertEqual(LengthScale.exponent(all, eye: .zero, as: Float.self), 0)
+    all.spheres = [Sphere(center: .zero, radius: 1e25)]
+    XCTAssertEqual(LengthScale.exponent(all, eye: .zero, as: Float.self), 83)
+    XCTAssertEqual(LengthScale.exponent(all, eye: .zero, as: Double.self), 0)
+    all.spheres = [Sphere(center: .zero, radius: 1e-200)]
+    XCTAssertEqual(
+      LengthScale.exponent(all, eye: .zero, as: Double.self), -665)
+  }
+
+  // MARK: - Watertight meshes at every scale
+
+  /// The stiff suite's closed icosphere scaled by `s`, seen from inside
+  /// (every ray must leave through some triangle) or from 3s outside.
+  func icosphere(_ s: Double, inside: Bool, _ precision: Precision) throws
+    -> Scene
+  {
+    let mesh = StiffSuiteTests.stiffFolder + "/icosphere.obj"
+    let eye = inside ? "\(0.1 * s) 0 0" : "0 0 \(3 * s)"
+    let text = """
+      PerspectiveCamera { center \(eye) direction 0 0 -1 up 0 1 0 \
+      angle 60 }
+      Group { numObjects 1 Transform { UniformScale \(s) \
+      TriangleMesh { obj_file \(mesh) } } }
+      """
+    return try SceneParser.parse(
+      text, file: "icosphere.txt",
+      options: SceneOptions(style: .course, precision: precision))
+  }
+
+  /// No pixel is lost along the mesh's shared edges at any scale from
+  /// 1e-20 to 1e20: from inside, every pixel hits; from outside, hits and
+  /// misses agree with the reference path on every pixel (measured: 0
+  /// lost, 0 disagreements).
+  func testIcosphere_WatertightFrom1eMinus20To1e20() throws {
+    for precision in Precision.allCases {
+      for exponent in stride(from: -20, through: 20, by: 5) {
+        let s = Double("1e\(exponent)") ?? 1
+        let inside = try icosphere(s, inside: true, precision)
+        let depth = depthsAndNormals(inside, precision).depth
+        let lost = depth.filter { !$0.isFinite }.count
+        XCTAssertEqual(lost, 0, "1e\(exponent) \(precision): pixels lost")
+        let outside = try icosphere(s, inside: false, precision)
+        let reference = AccuracyRender.reference(
+          outside, width: 48, height: 40, rays: precision)
+        let (buffers, _) = AccuracyRender.render(
+          outside, width: 48, height: 40, precision: precision,
+          method: .stable, runs: 0)
+        let m = buffers.measured(against: reference)
+        XCTAssertEqual(
+          m.disagreements, 0, "1e\(exponent) \(precision): disagreements")
+        XCTAssertGreaterThan(m.comparedHits, 300)
+      }
+    }
+  }
+}
