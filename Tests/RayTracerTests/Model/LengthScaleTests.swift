@@ -83,6 +83,76 @@ final class LengthScaleTests: XCTestCase {
       LengthScale.exponent(all, eye: .zero, as: Double.self), -665)
   }
 
+  // MARK: - The searches at extreme scales
+
+  /// 300 spheres in a 10-unit box (seeded), every length times `f`.
+  func manySpheres(_ f: Double, seed: UInt64) throws -> Scene {
+    var generator = SplitMix64(seed: seed)
+    var objects: [SceneObject<Double>] = []
+    for _ in 0..<300 {
+      let center = Vector3(
+        Double.random(in: -5...5, using: &generator),
+        Double.random(in: -5...5, using: &generator),
+        Double.random(in: -5...5, using: &generator))
+      objects.append(
+        .sphere(
+          Sphere(
+            center: center * f,
+            radius: Double.random(in: 0.05...0.6, using: &generator) * f)))
+    }
+    let camera = try XCTUnwrap(
+      PerspectiveCamera(
+        center: Vector3(0, 0, 14) * f, direction: Vector3(0, 0, -1),
+        up: Vector3(0, 1, 0), angle: 50))
+    return Scene(camera: camera, root: Group(objects))
+  }
+
+  /// Every sphere search (each sphere, culled per tile, BVH, screen tiles)
+  /// gives the scale-1 image at 2^±100 in Float and 2^±1000 in Double:
+  /// the records they search are the rescaled ones.
+  func testSearches_PowerOfTwoScales() throws {
+    let settings = RenderSettings(
+      width: 40, height: 32, outputs: [.depth, .normals])
+    let searches: [Renderer.SphereSearch] = [
+      .culledPerTile, .hierarchy, .screenTiles,
+    ]
+    func render<K: IntersectionKernel>(
+      _: K.Type, _ scene: Scene, _ search: Renderer.SphereSearch
+    ) -> RenderBuffers<K.Scalar> {
+      let compiled = CompiledScene<K>(
+        scene, hierarchyThreshold: search == .hierarchy ? 0 : .max,
+        projectionThreshold: search == .screenTiles ? 0 : .max)
+      let (buffers, used) = Renderer.renderReportingSearch(
+        compiled, settings: settings, overlapLimit: .max)
+      XCTAssertEqual(used, search)
+      return buffers
+    }
+    func check<K: IntersectionKernel>(_ kernel: K.Type, _ exponents: [Int])
+      throws
+    {
+      let seed: UInt64 = 13
+      let unit = try manySpheres(1, seed: seed)
+      for search in searches {
+        let expected = render(kernel, unit, search)
+        XCTAssertGreaterThan(expected.depth.filter(\.isFinite).count, 300)
+        for exponent in exponents {
+          let f = LengthScale.factor(exponent)
+          let scaled = render(
+            kernel, try manySpheres(f, seed: seed), search)
+          let scale = K.Scalar(f)
+          XCTAssertEqual(
+            scaled.depth, expected.depth.map { $0 * scale },
+            "seed \(seed), 2^\(exponent), \(search): depth")
+          XCTAssertEqual(
+            scaled.normals, expected.normals,
+            "seed \(seed), 2^\(exponent), \(search): normals")
+        }
+      }
+    }
+    try check(StableKernel<Float>.self, [-100, 100])
+    try check(StableKernel<Double>.self, [-1000, 1000])
+  }
+
   // MARK: - Watertight meshes at every scale
 
   /// The stiff suite's closed icosphere scaled by `s`, seen from inside
