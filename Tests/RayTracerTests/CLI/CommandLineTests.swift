@@ -305,6 +305,21 @@ final class CommandLineTests: XCTestCase {
     XCTAssertEqual(files().filter { $0.hasSuffix(".png") }.count, 4)
   }
 
+  /// A scene Float cannot hold has Double rows only.
+  func testReport_DoubleOnlySceneHasNoFloatRows() throws {
+    let outcome = try run([
+      "report", "scenes/stiff/unit-sphere-1e200.txt", "--size", "16", "16",
+      "--runs", "1", "--skip-antialiasing",
+    ])
+    XCTAssertEqual(outcome.status, 0, outcome.stderr)
+    let rows = outcome.stdout.split(separator: "\n").dropFirst(2)
+    XCTAssertEqual(
+      rows.map {
+        $0.split(separator: "|")[1].trimmingCharacters(in: .whitespaces)
+      },
+      ["double", "double"], outcome.stdout)
+  }
+
   func testReport_AntialiasingRows() throws {
     let outcome = try run([
       "report", "scenes/single-sphere.txt", "--size", "8", "8", "--runs", "1",
