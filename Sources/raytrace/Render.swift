@@ -358,6 +358,15 @@ struct Render: ParsableCommand {
       throw ExitCode.failure
     }
     let parseSeconds = clock.lap()
+    if let problem = LengthScale.problem(
+      scene, precision: plan.settings.precision)
+    {
+      printError(
+        SceneError(
+          file: plan.scenePath, line: 0, column: 0, message: problem
+        ).description)
+      throw ExitCode.failure
+    }
     try checkOutputs(plan.files, against: scene)
     do {
       for file in plan.files {

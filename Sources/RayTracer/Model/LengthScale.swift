@@ -85,6 +85,36 @@ public enum LengthScale {
     return largest
   }
 
+  /// Why `scene` cannot be drawn right in `precision` at any common scale,
+  /// or nil: a sphere so small beside the scene's largest length that its
+  /// radius squared, at the scale the render chooses, falls below the
+  /// precision's normal range (a radius of 1e-25 three units from the eye
+  /// in Float). Rescaling moves every length together, so nothing saves
+  /// it; the command line refuses such a scene rather than draw it wrong.
+  public static func problem(_ scene: Scene, precision: Precision)
+    -> String?
+  {
+    let all = scene.root.flattened()
+    let eye = scene.camera.center
+    let exponent =
+      switch precision {
+      case .float: Self.exponent(all, eye: eye, as: Float.self)
+      case .double: Self.exponent(all, eye: eye, as: Double.self)
+      }
+    let scale = factor(-exponent)
+    for sphere in all.spheres {
+      let radius = sphere.radius * scale
+      guard radius * radius < precision.smallestNormal else { continue }
+      let c = sphere.center
+      return "a sphere of radius \(sphere.radius) (centre \(c.x) \(c.y) "
+        + "\(c.z)) is too small beside the scene's largest length, "
+        + "\(largestLength(all, eye: eye)), for \(precision.rawValue): its "
+        + "radius squared leaves the range at any common scale"
+        + (precision == .float ? "; use --precision double" : "")
+    }
+    return nil
+  }
+
   /// 2^k as a Double (k within Double's exponent range).
   public static func factor(_ exponent: Int) -> Double {
     Double(sign: .plus, exponent: exponent, significand: 1)

@@ -163,6 +163,27 @@ final class CommandLineTests: XCTestCase {
     XCTAssertEqual(double.status, 0, double.stderr)
   }
 
+  /// A sphere too small beside the rest of the scene for the precision,
+  /// at any scale, is refused rather than drawn as nothing.
+  func testSceneError_SphereTooSmallForFloatExit1() throws {
+    let scene = folder + "/small.txt"
+    try
+      (SceneParserTests.camera
+      + "Group { numObjects 1 Sphere { center 0 0 0 radius 1e-25 } }\n")
+      .write(toFile: scene, atomically: true, encoding: .utf8)
+    let outcome = try run([
+      scene, "--precision", "float", "-o", folder + "/out.png",
+    ])
+    XCTAssertEqual(outcome.status, 1)
+    XCTAssertEqual(
+      outcome.stderr,
+      "\(scene): error: a sphere of radius 1e-25 (centre 0.0 0.0 0.0) is too "
+        + "small beside the scene's largest length, 10.0, for float: its "
+        + "radius squared leaves the range at any common scale; use "
+        + "--precision double\n")
+    XCTAssertFalse(files().contains("out.png"))
+  }
+
   func testSceneError_MissingFile() throws {
     let outcome = try run([folder + "/none.txt", "-o", folder + "/out.png"])
     XCTAssertEqual(outcome.status, 1)

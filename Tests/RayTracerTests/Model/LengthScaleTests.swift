@@ -83,6 +83,32 @@ final class LengthScaleTests: XCTestCase {
       LengthScale.exponent(all, eye: .zero, as: Double.self), -665)
   }
 
+  /// A sphere whose radius squared leaves the precision at any common
+  /// scale is named; the same sphere at a scale it can hold is not.
+  func testProblem_SphereTooSmallBesideTheScene() throws {
+    let camera = try XCTUnwrap(
+      PerspectiveCamera(
+        center: Vector3(0, 0, 3), direction: Vector3(0, 0, -1),
+        up: Vector3(0, 1, 0), angle: 45))
+    func scene(_ radius: Double) -> Scene {
+      Scene(
+        camera: camera,
+        root: Group([.sphere(Sphere(center: .zero, radius: radius))]))
+    }
+    XCTAssertEqual(
+      LengthScale.problem(scene(1e-25), precision: .float),
+      "a sphere of radius 1e-25 (centre 0.0 0.0 0.0) is too small beside "
+        + "the scene's largest length, 3.0, for float: its radius squared "
+        + "leaves the range at any common scale; use --precision double")
+    XCTAssertNil(LengthScale.problem(scene(1e-25), precision: .double))
+    XCTAssertNil(LengthScale.problem(scene(1e-15), precision: .float))
+    XCTAssertNotNil(LengthScale.problem(scene(1e-160), precision: .double))
+    // The unit-sphere scene scaled by 1e-25: nothing too small.
+    var small = scene(1e-25)
+    small.camera.center = Vector3(0, 0, 3e-25)
+    XCTAssertNil(LengthScale.problem(small, precision: .float))
+  }
+
   // MARK: - The searches at extreme scales
 
   /// 300 spheres in a 10-unit box (seeded), every length times `f`.
