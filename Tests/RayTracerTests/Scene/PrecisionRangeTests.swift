@@ -159,8 +159,8 @@ final class PrecisionRangeTests: XCTestCase {
     ) { error in
       XCTAssertEqual(
         (error as? SceneError)?.description,
-        "m.obj:3:5: error: the y coordinate of 'v': '1e39' is beyond the finite range of "
-          + "float (±3.4028235e+38); use --precision double")
+        "m.obj:3:5: error: the y coordinate of 'v': '1e39' is beyond the "
+          + "finite range of float (±3.4028235e+38); use --precision double")
     }
     XCTAssertNoThrow(
       try OBJReader.parse(
