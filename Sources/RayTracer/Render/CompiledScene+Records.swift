@@ -6,6 +6,9 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
   var normals: Triangle<Scalar>.VertexNormals?
   /// The winding's unit normal; nil for a degenerate triangle.
   var geometricNormal: Vector3<Scalar>?
+  /// For a triangle much larger than its distance from the eye, its plane
+  /// (`TrianglePlane`), from which t is taken; nil for every other.
+  var plane: (normal: Vector3<Scalar>, distance: Scalar)?
 
   init(
     v0: Vector3<Scalar>, v1: Vector3<Scalar>, v2: Vector3<Scalar>,
@@ -33,7 +36,29 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
   func intersect(
     _ ray: WatertightRay<Scalar>, before tMax: Scalar
   ) -> (t: Scalar, u: Scalar, v: Scalar, w: Scalar)? {
-    TriangleIntersection.intersect(ray, v0, v1, v2, after: 0, before: tMax)
+    guard let plane else {
+      return TriangleIntersection.intersect(
+        ray, v0, v1, v2, after: 0, before: tMax)
+    }
+    return planeIntersect(ray, plane, before: tMax)
+  }
+
+  /// The watertight test decides the hit and the barycentrics; the plane
+  /// gives t (`TrianglePlane`).
+  @inline(never)
+  func planeIntersect(
+    _ ray: WatertightRay<Scalar>,
+    _ plane: (normal: Vector3<Scalar>, distance: Scalar),
+    before tMax: Scalar
+  ) -> (t: Scalar, u: Scalar, v: Scalar, w: Scalar)? {
+    guard
+      let hit = TriangleIntersection.intersect(
+        ray, v0, v1, v2, after: -.infinity, before: .infinity),
+      let t = TrianglePlane.t(
+        normal: plane.normal, distance: plane.distance,
+        direction: ray.direction, after: 0, before: tMax)
+    else { return nil }
+    return (t, hit.u, hit.v, hit.w)
   }
 
   /// The normal where `ray` hits: the barycentrics are found again (the

@@ -181,8 +181,14 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
             Vector3($0.n0), Vector3($0.n1), Vector3($0.n2))
         })
       // A degenerate triangle is never hit: leaving it out changes nothing.
-      guard record.geometricNormal != nil else { continue }
-      triangles.append(record)
+      guard let normal = record.geometricNormal else { continue }
+      var placed = record
+      if cameraRelative {
+        placed.plane = TrianglePlane.make(
+          relative: (record.v0, record.v1, record.v2), normal: normal,
+          v0: triangle.v0, origin: eye)
+      }
+      triangles.append(placed)
       triangleMaterials.append(
         Int32(truncatingIfNeeded: triangle.materialIndex))
       if !textures.isEmpty {
