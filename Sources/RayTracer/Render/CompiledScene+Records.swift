@@ -6,9 +6,6 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
   var normals: Triangle<Scalar>.VertexNormals?
   /// The winding's unit normal; nil for a degenerate triangle.
   var geometricNormal: Vector3<Scalar>?
-  /// For a triangle much larger than its distance from the eye, its plane
-  /// (`TrianglePlane`), from which t is taken; nil for every other.
-  var plane: (normal: Vector3<Scalar>, distance: Scalar)?
 
   init(
     v0: Vector3<Scalar>, v1: Vector3<Scalar>, v2: Vector3<Scalar>,
@@ -36,19 +33,15 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
   func intersect(
     _ ray: WatertightRay<Scalar>, before tMax: Scalar
   ) -> (t: Scalar, u: Scalar, v: Scalar, w: Scalar)? {
-    guard let plane else {
-      return TriangleIntersection.intersect(
-        ray, v0, v1, v2, after: 0, before: tMax)
-    }
-    return planeIntersect(ray, plane, before: tMax)
+    TriangleIntersection.intersect(ray, v0, v1, v2, after: 0, before: tMax)
   }
 
   /// The watertight test decides the hit and the barycentrics; the plane
-  /// gives t (`TrianglePlane`).
-  @inline(never)
-  func planeIntersect(
+  /// gives t (`TrianglePlane`): for triangles much larger than their
+  /// distance from the eye.
+  func intersect(
     _ ray: WatertightRay<Scalar>,
-    _ plane: (normal: Vector3<Scalar>, distance: Scalar),
+    plane: (normal: Vector3<Scalar>, distance: Scalar),
     before tMax: Scalar
   ) -> (t: Scalar, u: Scalar, v: Scalar, w: Scalar)? {
     guard

@@ -36,6 +36,13 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   var triangleMaterials: [Int32] = []
   /// Per triangle, its texture coordinates: only for textured renders.
   var triangleTextureCoordinates: [Triangle<Scalar>.TextureCoordinates?] = []
+  /// The triangles before this index are searched by the watertight
+  /// test (through the hierarchy when there is one); those from it on are
+  /// large beside their distance from the eye, tested one by one with t
+  /// from `trianglePlanes` (`TrianglePlane`).
+  var ordinaryTriangleCount = 0
+  /// Per large triangle, in order, its plane seen from the eye.
+  var trianglePlanes: [(normal: Vector3<Scalar>, distance: Scalar)] = []
   var triangleHierarchy: BoundingVolumeHierarchy<Scalar>?
   var wideTriangleHierarchy: WideHierarchy<Scalar>?
   /// Spheres under transforms that are not similarities.
@@ -173,6 +180,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
         component(point.x, eye.x), component(point.y, eye.y),
         component(point.z, eye.z))
     }
+    var large: [LargeTriangle] = []
     for triangle in all.triangles {
       let record = TriangleRecord<Scalar>(
         v0: frame(triangle.v0), v1: frame(triangle.v1), v2: frame(triangle.v2),
@@ -182,13 +190,15 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
         })
       // A degenerate triangle is never hit: leaving it out changes nothing.
       guard let normal = record.geometricNormal else { continue }
-      var placed = record
-      if cameraRelative {
-        placed.plane = TrianglePlane.make(
+      if cameraRelative,
+        let plane = TrianglePlane.make(
           relative: (record.v0, record.v1, record.v2), normal: normal,
           v0: triangle.v0, origin: eye)
+      {
+        large.append((record, triangle, plane))
+        continue
       }
-      triangles.append(placed)
+      triangles.append(record)
       triangleMaterials.append(
         Int32(truncatingIfNeeded: triangle.materialIndex))
       if !textures.isEmpty {
@@ -230,6 +240,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       wideTriangleHierarchy = WideHierarchy(
         bvh, rayOrigin: Kernel.frameOrigin(eye: eye))
     }
+    appendLargeTriangles(large)
     for ellipsoid in all.transformedSpheres {
       let objectEye = ellipsoid.inverse.transformPoint(eye)
       let inverse = Matrix4<Scalar>(ellipsoid.inverse)
@@ -324,12 +335,15 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
             nearest.test(.triangle(hit.index)) { _ in hit.t }
           }
         } else {
-          for index in records.indices {
+          for index in 0..<ordinaryTriangleCount {
             nearest.test(.triangle(index)) {
               records[index].intersect(prepared, before: $0)?.t
             }
           }
         }
+      }
+      if ordinaryTriangleCount < triangles.count {
+        testLargeTriangles(prepared, &nearest)
       }
     }
     for index in ellipsoids.indices {
