@@ -400,12 +400,22 @@ struct Render: ParsableCommand {
     do {
       scene = try SceneReader.read(
         contentsOf: plan.scenePath,
-        options: SceneOptions(style: plan.settings.style))
+        options: SceneOptions(
+          style: plan.settings.style, precision: plan.settings.precision))
     } catch {
       printError(error.description)
       throw ExitCode.failure
     }
     let parseSeconds = clock.lap()
+    if let problem = LengthScale.problem(
+      scene, precision: plan.settings.precision)
+    {
+      printError(
+        SceneError(
+          file: plan.scenePath, line: 0, column: 0, message: problem
+        ).description)
+      throw ExitCode.failure
+    }
     try checkOutputs(plan.files, against: scene)
     do {
       for file in plan.files {

@@ -118,3 +118,92 @@ write("translated-far.txt", "The course-like scene translated by 1e6 along every
       "o - centre cancels in world coordinates.", course_like((1e6, 1e6, 1e6), 1))
 write("scaled-small.txt", "The course-like scene scaled by 1e-6.",
       "every length is tiny; nothing may underflow.", course_like((0, 0, 0), 1e-6))
+
+
+# A unit sphere scene scaled by s: the camera at 3s looking at the origin,
+# a sphere of radius s there. Squares of lengths leave the precision's
+# range long before the lengths do. Scenes beyond Float's range are double
+# only: Float reading refuses their numbers (see DOUBLE_ONLY).
+DOUBLE_ONLY = []
+for exponent in (10, 20, 30, 100, 200, 300):
+    for sign in (1, -1):
+        s = 10.0 ** (sign * exponent)
+        name = "unit-sphere-1e%d" % (sign * exponent)
+        only = exponent > 30
+        if only:
+            DOUBLE_ONLY.append(name)
+        write(name + ".txt", "A unit sphere scene scaled by 1e%d%s." % (sign * exponent,
+              " (double only: Float cannot hold its numbers)" if only else ""),
+              "r^2 and |p|^2 leave the precision's range unless rescaled.",
+              camera((0, 0, 3 * s), (0, 0, -1), (0, 1, 0), 45) + LIGHTS + MATERIALS
+              + group(["MaterialIndex 0", sphere((0, 0, 0), s)]))
+
+
+def triangle(a, b, c):
+    f = lambda v: " ".join(repr(float(x)) for x in v)
+    return "Triangle { vertex0 %s  vertex1 %s  vertex2 %s }" % (f(a), f(b), f(c))
+
+
+# A small triangle far away, the field of view just wider than it.
+write("far-triangle-1e4.txt", "A unit triangle at distance 1e4, filling the image.",
+      "its vertices relative to the eye round to the precision's ulp of 1e4.",
+      camera((0.1, 0.2, 1e4), (0, 0, -1), (0, 1, 0), 2 * math.degrees(math.atan(1.2e-4)))
+      + LIGHTS + MATERIALS
+      + group(["MaterialIndex 0", triangle((-1, -1, 0), (1, -1, 0), (0, 1, 0.5))]))
+
+# A ground triangle 2e6 across seen from one unit above it.
+write("ground-triangle.txt", "A ground triangle 2e6 across seen from one unit above it.",
+      "the edge functions multiply coordinates of 1e6 by the eye's height of 1.",
+      camera((0, 1, 0), (0, -0.2, -1), (0, 1, 0), 60) + LIGHTS + MATERIALS
+      + group(["MaterialIndex 2", triangle((-1e6, 0, 1e6), (1e6, 0, 1e6), (0, 0, -1e6)),
+               "MaterialIndex 0", sphere((0, 0.5, -4), 0.5)]))
+
+# A triangle seen so close to edge-on that hits run out to t ~ 1e5.
+write("grazing-triangle.txt", "A ground triangle at a grazing angle, hits out to t ~ 1e5.",
+      "the ray is nearly parallel to the triangle's plane.",
+      camera((0, 1, 0), (0, -1e-4, -1), (0, 1, 0), 0.01) + LIGHTS + MATERIALS
+      + group(["MaterialIndex 2", triangle((-1e5, 0, 1), (1e5, 0, 1), (0, 0, -2e5))]))
+
+
+def icosphere(subdivisions):
+    """A closed triangle mesh on the unit sphere: an icosahedron whose faces
+    are split in four `subdivisions` times, vertices pushed to the sphere."""
+    t = (1 + 5 ** 0.5) / 2
+    vertices = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t),
+                (0, -1, -t), (0, 1, -t), (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
+    faces = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4),
+             (11, 10, 2), (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8),
+             (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+    unit = lambda v: tuple(x / math.sqrt(sum(y * y for y in v)) for x in v)
+    vertices = [unit(v) for v in vertices]
+    for _ in range(subdivisions):
+        middle = {}
+
+        def mid(a, b):
+            key = (min(a, b), max(a, b))
+            if key not in middle:
+                vertices.append(unit(tuple((vertices[a][i] + vertices[b][i]) / 2 for i in range(3))))
+                middle[key] = len(vertices) - 1
+            return middle[key]
+        split = []
+        for a, b, c in faces:
+            ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
+            split += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
+        faces = split
+    lines = ["# A unit icosphere (%d faces), written by generate.py." % len(faces)]
+    lines += ["v %r %r %r" % v for v in vertices]
+    lines += ["f %d %d %d" % (a + 1, b + 1, c + 1) for a, b, c in faces]
+    return "\n".join(lines) + "\n"
+
+
+with open("icosphere.obj", "w") as f:
+    f.write(icosphere(2))
+
+# The icosphere mesh translated by 1e6 along every axis.
+write("mesh-translated-1e6.txt", "A triangle mesh translated by 1e6 along every axis.",
+      "vertices relative to the eye cancel in world coordinates.",
+      camera((1e6 + 0.3, 1e6 - 0.2, 1e6 + 4), (-0.075, 0.05, -1), (0, 1, 0), 40)
+      + LIGHTS + MATERIALS
+      + group(["MaterialIndex 1",
+               "Transform { Translate 1000000.0 1000000.0 1000000.0 "
+               "TriangleMesh { obj_file icosphere.obj } }"]))

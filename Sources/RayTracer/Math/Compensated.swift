@@ -22,7 +22,10 @@ public enum Compensated {
   /// A Float product is exact in Double, which is cheaper than the fused
   /// multiply-add: without FMA in the baseline x86-64 instruction set,
   /// `addingProduct` is a call into libm. For Double that call measured
-  /// faster than Dekker and Veltkamp's 17-flop split, so it stays.
+  /// faster than Dekker and Veltkamp's 17-flop split, so it stays here,
+  /// valid at any magnitude; the per-ray `dot` of planes, on unit
+  /// vectors, uses `splitProduct` (docs/PERFORMANCE.md, "The cost of
+  /// working across the whole range").
   @inlinable @inline(__always)
   public static func twoProduct<S: RayScalar>(
     _ a: S, _ b: S
@@ -36,18 +39,55 @@ public enum Compensated {
     return (p, (-p).addingProduct(a, b))
   }
 
+  /// p + e == a·b exactly, p = fl(a·b), by Dekker's product of Veltkamp's
+  /// halves (17 flops, no call): exact while |a|, |b| < 2^(E/2) and the
+  /// error term is not subnormal; for Float, `twoProduct`'s Double
+  /// product. Outside that range use `twoProduct`.
+  @inlinable @inline(__always)
+  public static func splitProduct<S: RayScalar>(
+    _ a: S, _ b: S
+  ) -> (product: S, error: S) {
+    if S.self == Float.self { return twoProduct(a, b) }
+    let p = a * b
+    let (aHigh, aLow) = split(a)
+    let (bHigh, bLow) = split(b)
+    let error =
+      ((aHigh * bHigh - p) + aHigh * bLow + aLow * bHigh) + aLow * bLow
+    return (p, error)
+  }
+
+  /// Veltkamp's split of a into high + low, each with at most half the
+  /// significand's bits, high + low == a exactly (for |a| < 2^(E/2)).
+  @inlinable @inline(__always)
+  static func split<S: RayScalar>(_ a: S) -> (high: S, low: S) {
+    let factor =
+      S(
+        sign: .plus, exponent: S.Exponent((S.significandBitCount + 2) / 2),
+        significand: 1) + 1
+    let c = factor * a
+    let high = c - (c - a)
+    return (high, a - high)
+  }
+
   /// a·b, as if evaluated in twice the precision and rounded (Dot2).
   ///
   /// Relative error ≤ ε + γ(n)²·cond: a few ulps unless the dot product
   /// cancels by more than 1/ε, where plain evaluation would already have
   /// no correct digit left.
+  ///
+  /// The products' errors come from Dekker and Veltkamp's splitting
+  /// (`splitProduct`) rather than the fused multiply-add, which baseline
+  /// x86-64 reaches only through a libm call: the same exact errors, so
+  /// the same results, for components of magnitude below 2^(E/2) (E the
+  /// type's largest exponent) and products above the subnormal range, as
+  /// the unit normals and directions of the render's planes are.
   @inlinable
   public static func dot<S: RayScalar>(
     _ a: Vector3<S>, _ b: Vector3<S>
   ) -> S {
-    let px = twoProduct(a.x, b.x)
-    let py = twoProduct(a.y, b.y)
-    let pz = twoProduct(a.z, b.z)
+    let px = splitProduct(a.x, b.x)
+    let py = splitProduct(a.y, b.y)
+    let pz = splitProduct(a.z, b.z)
     let s1 = twoSum(px.product, py.product)
     let s2 = twoSum(s1.sum, pz.product)
     let errors = px.error + py.error + pz.error + s1.error + s2.error

@@ -210,10 +210,14 @@ extension Group {
         if let normals = triangle.vertexNormals {
           // Not normalised one by one: the hit's interpolation then gives
           // the transform of the object's interpolated normal.
+          // A scale far from 1 (`UniformScale 1e20`) would take the
+          // cofactors, its square, out of range: they are taken of the
+          // matrix rescaled by a power of two, the same directions.
+          let normalMatrix = matrix.withLinearPartNearOne()
           moved.vertexNormals = Triangle.VertexNormals(
-            matrix.cofactorNormal(normals.n0),
-            matrix.cofactorNormal(normals.n1),
-            matrix.cofactorNormal(normals.n2))
+            normalMatrix.cofactorNormal(normals.n0),
+            normalMatrix.cofactorNormal(normals.n1),
+            normalMatrix.cofactorNormal(normals.n2))
         }
         result.triangles.append(moved)
       case .group(let group):

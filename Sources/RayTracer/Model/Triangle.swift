@@ -148,19 +148,36 @@ extension Triangle: Intersectable {
     _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar,
     method: IntersectionMethod
   ) -> Hit<Scalar>? {
+    // The interval filters t after the test, so the test runs on the
+    // whole line: a large triangle takes t from its plane instead.
     guard
       let hit = TriangleIntersection.intersect(
-        WatertightRay(ray), v0, v1, v2, after: tMin, before: tMax)
+        WatertightRay(ray), v0, v1, v2, after: -.infinity, before: .infinity)
     else { return nil }
     let seen =
       method == .naive
       ? self
       : Triangle(v0 - ray.origin, v1 - ray.origin, v2 - ray.origin)
     guard let geometric = seen.geometricNormal else { return nil }
+    var t = hit.t
+    if method == .stable,
+      let plane = TrianglePlane.make(
+        relative: (seen.v0, seen.v1, seen.v2), normal: geometric, v0: v0,
+        origin: ray.origin)
+    {
+      guard
+        let planeT = TrianglePlane.t(
+          normal: plane.normal, distance: plane.distance,
+          direction: ray.direction, after: tMin, before: tMax)
+      else { return nil }
+      t = planeT
+    } else {
+      guard t > tMin && t < tMax else { return nil }
+    }
     let normal = shadingNormal(
       u: hit.u, v: hit.v, w: hit.w, geometric: geometric)
     return Hit(
-      t: hit.t, normal: normal, materialIndex: materialIndex,
+      t: t, normal: normal, materialIndex: materialIndex,
       textureCoordinate: textureCoordinates?.at(u: hit.u, v: hit.v, w: hit.w))
   }
 

@@ -139,6 +139,9 @@ public enum TriangleIntersection {
 /// triangle misses.
 public struct WatertightRay<S: RayScalar>: Hashable, Sendable {
   public var origin: Vector3<S>
+  /// The ray's direction, for the plane of large triangles
+  /// (`TrianglePlane`).
+  public var direction: Vector3<S>
   public var kx: Int
   public var ky: Int
   public var kz: Int
@@ -158,6 +161,7 @@ public struct WatertightRay<S: RayScalar>: Hashable, Sendable {
     var ky = kx == 2 ? 0 : kx + 1
     if d[kz] < 0 { swap(&kx, &ky) }
     origin = ray.origin
+    direction = d
     self.kx = kx
     self.ky = ky
     self.kz = kz

@@ -36,6 +36,24 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
     TriangleIntersection.intersect(ray, v0, v1, v2, after: 0, before: tMax)
   }
 
+  /// The watertight test decides the hit and the barycentrics; the plane
+  /// gives t (`TrianglePlane`): for triangles much larger than their
+  /// distance from the eye.
+  func intersect(
+    _ ray: WatertightRay<Scalar>,
+    plane: (normal: Vector3<Scalar>, distance: Scalar),
+    before tMax: Scalar
+  ) -> (t: Scalar, u: Scalar, v: Scalar, w: Scalar)? {
+    guard
+      let hit = TriangleIntersection.intersect(
+        ray, v0, v1, v2, after: -.infinity, before: .infinity),
+      let t = TrianglePlane.t(
+        normal: plane.normal, distance: plane.distance,
+        direction: ray.direction, after: 0, before: tMax)
+    else { return nil }
+    return (t, hit.u, hit.v, hit.w)
+  }
+
   /// The normal where `ray` hits: the barycentrics are found again (the
   /// same computation as the hit's, so the same values).
   func normal(of ray: CameraRay<Scalar>) -> Vector3<Scalar> {

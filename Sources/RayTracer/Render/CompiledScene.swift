@@ -6,8 +6,14 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   public typealias Scalar = Kernel.Scalar
 
   public let camera: PerspectiveCamera<Scalar>
+  /// The eye in the frame of the records, scaled as they are.
   public let rayOrigin: Vector3<Scalar>
+  /// The eye in the world, for shading.
   public let eye: Vector3<Scalar>
+  /// 2^k: the records hold the scene's lengths times 2^−k, so a search's
+  /// t is the world's t times 2^−k, exactly (`LengthScale`); 1 for every
+  /// scene within the precision's comfortable range.
+  public let lengthScale: Scalar
   var spheres: [Kernel.SphereRecord]
   var sphereMaterials: [Int32]
   var planes: [Kernel.PlaneRecord]
@@ -30,6 +36,13 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   var triangleMaterials: [Int32] = []
   /// Per triangle, its texture coordinates: only for textured renders.
   var triangleTextureCoordinates: [Triangle<Scalar>.TextureCoordinates?] = []
+  /// The triangles before this index are searched by the watertight
+  /// test (through the hierarchy when there is one); those from it on are
+  /// large beside their distance from the eye, tested one by one with t
+  /// from `trianglePlanes` (`TrianglePlane`).
+  var ordinaryTriangleCount = 0
+  /// Per large triangle, in order, its plane seen from the eye.
+  var trianglePlanes: [(normal: Vector3<Scalar>, distance: Scalar)] = []
   var triangleHierarchy: BoundingVolumeHierarchy<Scalar>?
   var wideTriangleHierarchy: WideHierarchy<Scalar>?
   /// Spheres under transforms that are not similarities.
@@ -65,11 +78,25 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     hierarchyThreshold: Int = BoundingVolumeHierarchy<Scalar>.defaultThreshold,
     projectionThreshold: Int = .max
   ) {
-    let eyeDouble = scene.camera.center
     camera = PerspectiveCamera(scene.camera)
-    eye = Vector3(eyeDouble)
+    eye = Vector3(scene.camera.center)
+    // Lengths scaled by 2^−k when the scene is beyond the precision's
+    // comfortable range (`LengthScale`); k = 0, nothing scaled, otherwise.
+    let unscaled = scene.root.flattened()
+    let exponent = LengthScale.exponent(
+      unscaled, eye: scene.camera.center, as: Scalar.self)
+    lengthScale = Scalar(LengthScale.factor(exponent))
+    let all: Primitives<Double>
+    let eyeDouble: Vector3<Double>
+    if exponent == 0 {
+      (all, eyeDouble) = (unscaled, scene.camera.center)
+    } else {
+      let factor = LengthScale.factor(-exponent)
+      (all, eyeDouble) = (
+        unscaled.scaled(by: factor), scene.camera.center * factor
+      )
+    }
     rayOrigin = Kernel.frameOrigin(eye: eyeDouble)
-    let all = scene.root.flattened()
     let (sphereList, planeList) = (all.spheres, all.planes)
     spheres = Self.map(sphereList) { Kernel.makeSphere($0, eye: eyeDouble) }
     sphereMaterials = sphereList.map {
@@ -156,6 +183,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     }
     triangles.reserveCapacityOnHugePages(all.triangles.count)
     triangleMaterials.reserveCapacity(all.triangles.count)
+    var large: [LargeTriangle] = []
     for triangle in all.triangles {
       let record = TriangleRecord<Scalar>(
         v0: frame(triangle.v0), v1: frame(triangle.v1), v2: frame(triangle.v2),
@@ -164,7 +192,15 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
             Vector3($0.n0), Vector3($0.n1), Vector3($0.n2))
         })
       // A degenerate triangle is never hit: leaving it out changes nothing.
-      guard record.geometricNormal != nil else { continue }
+      guard let normal = record.geometricNormal else { continue }
+      if cameraRelative,
+        let plane = TrianglePlane.make(
+          relative: (record.v0, record.v1, record.v2), normal: normal,
+          v0: triangle.v0, origin: eye)
+      {
+        large.append((record, triangle, plane))
+        continue
+      }
       triangles.append(record)
       triangleMaterials.append(
         Int32(truncatingIfNeeded: triangle.materialIndex))
@@ -209,6 +245,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       wideTriangleHierarchy = WideHierarchy(
         bvh, rayOrigin: Kernel.frameOrigin(eye: eye))
     }
+    appendLargeTriangles(large)
     for ellipsoid in all.transformedSpheres {
       let objectEye = ellipsoid.inverse.transformPoint(eye)
       let inverse = Matrix4<Scalar>(ellipsoid.inverse)
@@ -287,12 +324,15 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
             nearest.test(.triangle(hit.index)) { _ in hit.t }
           }
         } else {
-          for index in records.indices {
+          for index in 0..<ordinaryTriangleCount {
             nearest.test(.triangle(index)) {
               records[index].intersect(prepared, before: $0)?.t
             }
           }
         }
+      }
+      if ordinaryTriangleCount < triangles.count {
+        testLargeTriangles(prepared, &nearest)
       }
     }
     for index in ellipsoids.indices {

@@ -13,6 +13,10 @@
 /// the first in the file, the fast engine the first by kind (spheres,
 /// planes, triangles, ellipsoids); no scene of the project has such a tie.
 ///
+/// A scene beyond Double's comfortable range is traced with its lengths
+/// scaled by a power of two, exactly as the fast engine traces it
+/// (`LengthScale`): the world's t is the traced t times `lengthScale`.
+///
 /// It computes in Double, the precision of the scene as read: a Float
 /// render's records hold Double values rounded once, which no Float model
 /// can hold (see docs/ENGINES.md).
@@ -47,8 +51,13 @@ public enum CourseEngine {
   private struct View: Sendable {
     let camera: PerspectiveCamera<Double>
     let scene: Scene
-    /// The scene's group with its transforms applied.
+    /// The scene's group with its transforms applied, its lengths scaled
+    /// by 1 / `lengthScale`.
     let world: Group<Double>
+    /// The eye, scaled as `world` is: where rays start.
+    let origin: Vector3<Double>
+    /// 2^k, 1 for every scene within Double's comfortable range.
+    let lengthScale: Double
     let materials: [Material<Double>]
     let textures: [Texture?]
     let settings: RenderSettings
@@ -57,7 +66,17 @@ public enum CourseEngine {
     init(_ scene: Scene, textures: [Texture?], settings: RenderSettings) {
       camera = scene.camera.styled(settings.style)
       self.scene = scene
-      world = scene.root.placed()
+      let exponent = LengthScale.exponent(
+        scene.root.flattened(), eye: scene.camera.center, as: Double.self)
+      lengthScale = LengthScale.factor(exponent)
+      if exponent == 0 {
+        world = scene.root.placed()
+        origin = camera.center
+      } else {
+        let factor = LengthScale.factor(-exponent)
+        world = scene.root.placed().scaled(by: factor)
+        origin = camera.center * factor
+      }
       materials = scene.materials
       self.textures = textures
       self.settings = settings
@@ -72,7 +91,7 @@ public enum CourseEngine {
       let x: Double = style.screenX(column: column, width: settings.width)
       let direction = camera.rayDirection(
         x: x, rowBase: camera.rowBase(y: y, aspect: aspect))
-      return Ray(origin: camera.center, direction: direction)
+      return Ray(origin: origin, direction: direction)
     }
 
     /// The nearest hit of every object in the scene's group.
@@ -94,7 +113,8 @@ public enum CourseEngine {
         material.diffuse = texture.color(at: coordinate)
       }
       return material.shade(
-        point: ray.origin + ray.direction * hit.t, normal: hit.normal,
+        point: camera.center + ray.direction * (hit.t * lengthScale),
+        normal: hit.normal,
         viewDirection: ray.direction, ambient: scene.ambient,
         lights: scene.lights, attenuate: settings.style == .mit)
     }
@@ -103,7 +123,9 @@ public enum CourseEngine {
       let pixel = row * settings.width + column
       let ray = ray(column: column, row: row)
       let hit = trace(ray)
-      if !pixels.depth.isEmpty { pixels.depth[pixel] = hit?.t ?? .infinity }
+      if !pixels.depth.isEmpty {
+        pixels.depth[pixel] = hit.map { $0.t * lengthScale } ?? .infinity
+      }
       if !pixels.normals.isEmpty {
         pixels.normals[pixel] = hit?.normal ?? .zero
       }
@@ -116,7 +138,7 @@ public enum CourseEngine {
       var samples = PixelSamples(
         column: column, row: row, camera: camera, settings: settings)
       while let direction = samples.next() {
-        let sample = Ray(origin: camera.center, direction: direction)
+        let sample = Ray(origin: origin, direction: direction)
         sum += color(sample, trace(sample))
       }
       pixels.color[pixel] = sum / Double(samples.count)

@@ -20,7 +20,7 @@ extension Renderer {
       if shadeCentre { targets.color[pixel] = scene.background }
       return
     }
-    if wantsDepth { targets.depth[pixel] = hit.t }
+    if wantsDepth { targets.depth[pixel] = hit.t * scene.lengthScale }
     guard wantsNormals || shadeCentre else { return }
     let normal: Vector3<Kernel.Scalar>
     if case .sphere = hit.what, let sphereRecord {
@@ -43,7 +43,8 @@ extension Renderer {
     scene: CompiledScene<Kernel>, attenuate: Bool
   ) -> RGB<Kernel.Scalar> {
     scene.shadingMaterial(of: hit.what, ray).shade(
-      point: scene.eye + ray.direction * hit.t, normal: normal,
+      point: scene.eye + ray.direction * (hit.t * scene.lengthScale),
+      normal: normal,
       viewDirection: ray.direction, ambient: scene.ambient,
       lights: scene.lights, attenuate: attenuate)
   }

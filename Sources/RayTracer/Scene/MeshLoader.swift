@@ -23,11 +23,12 @@ enum MeshLoader {
   }
 
   static func load(
-    _ path: String, materialIndex: Int, textured: Bool, normals: MeshNormals
+    _ path: String, materialIndex: Int, textured: Bool, normals: MeshNormals,
+    precision: Precision = .double
   ) throws(Failure) -> Loaded {
     var mesh: OBJMesh
     do {
-      mesh = try OBJReader.read(contentsOf: path)
+      mesh = try OBJReader.read(contentsOf: path, precision: precision)
     } catch {
       guard error.line == 0 else { throw .inFile(error) }
       throw .atReference(

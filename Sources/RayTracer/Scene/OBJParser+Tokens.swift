@@ -23,6 +23,12 @@ extension OBJParser {
         "expected a number for \(name) of '\(statement)', found "
           + "'\(quote(token))'")
     }
+    if !precision.holds(value) || value == 0,
+      Precision.isDecimal(quote(token)),
+      let problem = precision.rangeProblem(value, text: quote(token))
+    {
+      throw error(at: token, "\(name) of '\(statement)': \(problem)")
+    }
     guard value.isFinite else {
       throw error(
         at: token,

@@ -41,30 +41,33 @@
 ///   `DecimalParser`'s fast path. See OBJReaderTests for the measured rate.
 public enum OBJReader {
   /// Reads and parses the file at `path`; `path` names the file in
-  /// messages. A file that cannot be read is an error with line 0.
-  public static func read(contentsOf path: String) throws(SceneError) -> OBJMesh
-  {
+  /// messages. A file that cannot be read is an error with line 0. Every
+  /// number must be held by `precision` (see `Precision.rangeProblem`).
+  public static func read(
+    contentsOf path: String, precision: Precision = .double
+  ) throws(SceneError) -> OBJMesh {
     let bytes: [UInt8]
     do {
       bytes = try readFile(path)
     } catch {
       throw SceneError(file: path, line: 0, column: 0, message: error.reason)
     }
-    return try parse(bytes: bytes, file: path)
+    return try parse(bytes: bytes, file: path, precision: precision)
   }
 
   /// Parses `text`; `file` names it in messages.
-  public static func parse(_ text: String, file: String) throws(SceneError)
-    -> OBJMesh
-  {
-    try parse(bytes: Array(text.utf8), file: file)
+  public static func parse(
+    _ text: String, file: String, precision: Precision = .double
+  ) throws(SceneError) -> OBJMesh {
+    try parse(bytes: Array(text.utf8), file: file, precision: precision)
   }
 
   /// Parses raw bytes, which need not be valid UTF-8.
-  static func parse(bytes: [UInt8], file: String) throws(SceneError) -> OBJMesh
-  {
+  static func parse(
+    bytes: [UInt8], file: String, precision: Precision = .double
+  ) throws(SceneError) -> OBJMesh {
     try bytes.withUnsafeBufferPointer { (buffer) throws(SceneError) in
-      var parser = OBJParser(bytes: buffer, file: file)
+      var parser = OBJParser(bytes: buffer, file: file, precision: precision)
       return try parser.parse()
     }
   }
@@ -76,6 +79,8 @@ public enum OBJReader {
 struct OBJParser {
   let bytes: UnsafeBufferPointer<UInt8>
   let file: String
+  /// The render's precision, which must hold every number.
+  let precision: Precision
   var index = 0
   var line = 1
   var lineStart = 0
@@ -152,9 +157,13 @@ struct OBJParser {
     }
   }
 
-  init(bytes: UnsafeBufferPointer<UInt8>, file: String) {
+  init(
+    bytes: UnsafeBufferPointer<UInt8>, file: String,
+    precision: Precision = .double
+  ) {
     self.bytes = bytes
     self.file = file
+    self.precision = precision
   }
 
   mutating func parse() throws(SceneError) -> OBJMesh {

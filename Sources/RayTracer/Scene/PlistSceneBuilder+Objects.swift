@@ -125,10 +125,13 @@ extension PlistSceneBuilder {
         "\(path).transforms",
         "the Transform's matrix has no inverse (a scale of 0?)")
     }
+    if let problem = SceneParser.matrixProblem(transform, options.precision) {
+      throw fail("\(path).transforms", problem)
+    }
     if openTransforms == 0
-      && !SceneParser.movedGeometryIsFinite(transform)
+      && !SceneParser.movedGeometryIsFinite(transform, options.precision)
     {
-      throw fail(path, SceneParser.movedGeometryMessage)
+      throw fail(path, SceneParser.movedGeometryMessage(options.precision))
     }
     return transform
   }
@@ -204,7 +207,7 @@ extension PlistSceneBuilder {
     do {
       loaded = try MeshLoader.load(
         file, materialIndex: material, textured: textured,
-        normals: options.meshNormals)
+        normals: options.meshNormals, precision: options.precision)
     } catch {
       switch error {
       case .inFile(let inner): throw inner

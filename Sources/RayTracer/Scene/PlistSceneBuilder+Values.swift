@@ -150,6 +150,7 @@ extension PlistSceneBuilder {
       guard number.isFinite else {
         throw fail("\(path).\(key)", "expected a finite number")
       }
+      try checkRange(number, "\(number)", "\(path).\(key)")
       return number
     }
     return try numbers(value, count: 1, "\(path).\(key)")[0]
@@ -178,6 +179,7 @@ extension PlistSceneBuilder {
   ) throws(SceneError) -> [Double] {
     guard case .string(let text) = value else {
       if count == 1, case .number(let number) = value, number.isFinite {
+        try checkRange(number, "\(number)", path)
         return [number]
       }
       throw fail(
@@ -200,6 +202,9 @@ extension PlistSceneBuilder {
       let value = utf8.withUnsafeMutableBufferPointer {
         DecimalParser.parse(UnsafeBufferPointer($0))
       }
+      if let value, Precision.isDecimal(String(word)) {
+        try checkRange(value, String(word), path)
+      }
       guard let value, value.isFinite else { values = []; break }
       values.append(value)
     }
@@ -212,6 +217,17 @@ extension PlistSceneBuilder {
         path, "\(what) \(noun)\(found), found \(quoted(.string(text)))")
     }
     return values
+  }
+
+  /// Refuses a number, written `text`, that the render's precision
+  /// cannot hold (see `Precision.rangeProblem`), at its key path.
+  func checkRange(
+    _ value: Double, _ text: String, _ path: String
+  ) throws(SceneError) {
+    guard !options.precision.holds(value),
+      let problem = options.precision.rangeProblem(value, text: text)
+    else { return }
+    throw fail(path, problem)
   }
 
   func required<T>(

@@ -1,19 +1,27 @@
 /// What reading a scene depends on beyond its file: the image style's
-/// reading of meshes.
+/// reading of meshes, and the precision the scene will be rendered in.
 public struct SceneOptions: Hashable, Sendable {
   /// How a mesh without `vn` lines gets its vertex normals.
   public var meshNormals: MeshNormals
+  /// The render's precision: every number of the scene (and of its
+  /// meshes), and every Transform's matrix, must be finite, and zero or
+  /// normal, in it; the readers refuse the first that is not, where it is
+  /// written (see `Precision.rangeProblem`). Double by default, which
+  /// refuses only what Double cannot hold either.
+  public var precision: Precision
 
-  public init(meshNormals: MeshNormals) {
+  public init(meshNormals: MeshNormals, precision: Precision = .double) {
     self.meshNormals = meshNormals
+    self.precision = precision
   }
 
   /// The reading each image style's images were made with.
-  public init(style: ImageStyle) {
+  public init(style: ImageStyle, precision: Precision = .double) {
     switch style {
     case .course: meshNormals = .areaWeighted
     case .mit: meshNormals = .unitMean
     }
+    self.precision = precision
   }
 }
 

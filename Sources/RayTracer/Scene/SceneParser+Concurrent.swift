@@ -42,7 +42,7 @@ extension SceneParser {
     _ state: inout GroupState, from split: Int
   ) throws(SceneError) -> GroupProgress {
     var run = SphereRun(
-      bytes: tokenizer.source, file: file, from: split,
+      bytes: tokenizer.source, file: file, options: options, from: split,
       capacity: state.declared.value - state.objects.count)
     run.parser.readsPlainSpheres = readsPlainSpheres
     var outcome: Result<GroupProgress, SceneError> = .success(.spliced)
@@ -113,9 +113,12 @@ extension SceneParser {
     /// Where the first token not read starts.
     var stop: SceneTokenizer.Position
 
-    init(bytes: SceneBytes, file: String, from split: Int, capacity: Int) {
-      parser = SceneParser(
-        bytes: bytes, file: file, options: .init(style: .course))
+    init(
+      bytes: SceneBytes, file: String, options: SceneOptions, from split: Int,
+      capacity: Int
+    ) {
+      // The options decide which numbers are refused (the precision).
+      parser = SceneParser(bytes: bytes, file: file, options: options)
       parser.tokenizer.position = SceneTokenizer.Position(
         index: split, line: 1, lineStart: split)
       self.capacity = capacity

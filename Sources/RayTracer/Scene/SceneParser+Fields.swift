@@ -69,8 +69,21 @@ extension SceneParser {
     guard let value = tokenizer.number(token) else {
       throw error(at: token, "expected a number, found '\(text(token))'")
     }
-    guard value.isFinite else {
-      throw error(at: token, "expected a finite number, found '\(text(token))'")
+    // A zero is refused only when written non-zero ("1e-400"): the text
+    // is looked at then, and the check costs nothing for other numbers.
+    guard options.precision.holds(value),
+      value != 0
+        || !Precision.writesNonZero(
+          bytes: tokenizer.bytes[token.start..<token.end])
+    else {
+      let written = text(token)
+      if !value.isFinite && !Precision.isDecimal(written) {
+        throw error(at: token, "expected a finite number, found '\(written)'")
+      }
+      throw error(
+        at: token,
+        options.precision.rangeProblem(value, text: written)
+          ?? "expected a finite number, found '\(written)'")
     }
     return (value, token)
   }
@@ -93,8 +106,7 @@ extension SceneParser {
     return value
   }
 
-  mutating func color(_ field: String) throws(SceneError) -> RGB<Double>
-  {
+  mutating func color(_ field: String) throws(SceneError) -> RGB<Double> {
     let start = peekStart()
     let value = try vector()
     guard value.x >= 0 && value.y >= 0 && value.z >= 0 else {

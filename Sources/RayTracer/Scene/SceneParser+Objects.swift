@@ -164,6 +164,9 @@ extension SceneParser {
           throw error(
             at: start, "the Transform's matrix has no inverse (a scale of 0?)")
         }
+        if let problem = Self.matrixProblem(transform, options.precision) {
+          throw error(at: start, problem)
+        }
         if openTransforms == 1 {
           try checkMovedGeometry(transform, start)
         }
@@ -228,44 +231,6 @@ extension SceneParser {
     }
   }
 
-  /// Refuses geometry that a Transform takes beyond Double's range: each
-  /// number of the file is finite, but a product of finite matrices, or a
-  /// finite matrix applied to a point, need not be (`UniformScale 1e300`
-  /// of `offset 1e300`), nor need a scaled radius stay above 0. The render
-  /// would otherwise meet infinities and NaN normals.
-  func checkMovedGeometry(
-    _ transform: Transform<Double>, _ start: SceneToken
-  ) throws(SceneError) {
-    guard Self.movedGeometryIsFinite(transform) else {
-      throw error(at: start, Self.movedGeometryMessage)
-    }
-  }
-
-  static let movedGeometryMessage =
-    "the Transform takes its object beyond Double's range: a coordinate, "
-    + "offset or normal is no longer finite, or a radius becomes 0"
-
-  /// Whether every primitive under `transform`, moved, is finite (and
-  /// every sphere keeps a positive radius).
-  static func movedGeometryIsFinite(_ transform: Transform<Double>) -> Bool {
-    let moved = Group([.transform(transform)]).flattened()
-    return
-      moved.spheres.allSatisfy {
-        $0.center.isFinite && $0.radius.isFinite && $0.radius > 0
-      }
-      && moved.planes.allSatisfy { $0.normal.isFinite && $0.offset.isFinite }
-      && moved.triangles.allSatisfy { triangle in
-        triangle.v0.isFinite && triangle.v1.isFinite && triangle.v2.isFinite
-          && (triangle.vertexNormals.map {
-            $0.n0.isFinite && $0.n1.isFinite && $0.n2.isFinite
-          } ?? true)
-      }
-      && moved.transformedSpheres.allSatisfy {
-        $0.matrix.rowMajorEntries.allSatisfy(\.isFinite)
-          && $0.inverse.rowMajorEntries.allSatisfy(\.isFinite)
-      }
-  }
-
   mutating func parseTriangle(material: Int) throws(SceneError)
     -> Triangle<Double>
   {
@@ -309,7 +274,7 @@ extension SceneParser {
     do {
       let mesh = try MeshLoader.load(
         resolved, materialIndex: material, textured: textured ?? false,
-        normals: options.meshNormals)
+        normals: options.meshNormals, precision: options.precision)
       meshFiles.append(resolved)
       if !mesh.hasTextureCoordinates {
         meshesWithoutTextureCoordinates.append((material, token, resolved))
@@ -352,10 +317,14 @@ extension SceneParser {
   > {
     let start = tokenizer.position
     if readsPlainSpheres, let (center, radius) = tokenizer.plainSphere() {
-      if radius > 0 {
+      let precision = options.precision
+      if radius > 0, precision.holds(radius), precision.holds(center.x),
+        precision.holds(center.y), precision.holds(center.z)
+      {
         return Sphere(center: center, radius: radius, materialIndex: material)
       }
-      // The error at the radius comes from the reading below.
+      // The error at the radius, or at a number the precision cannot
+      // hold, comes from the reading below.
       tokenizer.position = start
     }
     try expect(.open, "'{' after Sphere")

@@ -207,6 +207,50 @@ final class CommandLineTests: XCTestCase {
     XCTAssertFalse(files().contains("out.png"))
   }
 
+  /// A value the chosen precision cannot hold is an error, not an empty
+  /// image: Double holds it, Float does not.
+  func testSceneError_ValueBeyondFloatExit1() throws {
+    let scene = folder + "/big.txt"
+    try
+      (SceneParserTests.camera
+      + "Group { numObjects 1 Sphere { center 0 0 0 radius 1e150 } }\n")
+      .write(toFile: scene, atomically: true, encoding: .utf8)
+    let outcome = try run([
+      scene, "--precision", "float", "-o", folder + "/out.png",
+    ])
+    XCTAssertEqual(outcome.status, 1)
+    XCTAssertEqual(
+      outcome.stderr,
+      "\(scene):2:51: error: '1e150' is beyond the finite range of float "
+        + "(±3.4028235e+38); use --precision double\n")
+    XCTAssertFalse(files().contains("out.png"))
+    let double = try run([
+      scene, "--precision", "double", "-o", folder + "/out.png",
+    ])
+    XCTAssertEqual(double.status, 0, double.stderr)
+  }
+
+  /// A sphere too small beside the rest of the scene for the precision,
+  /// at any scale, is refused rather than drawn as nothing.
+  func testSceneError_SphereTooSmallForFloatExit1() throws {
+    let scene = folder + "/small.txt"
+    try
+      (SceneParserTests.camera
+      + "Group { numObjects 1 Sphere { center 0 0 0 radius 1e-25 } }\n")
+      .write(toFile: scene, atomically: true, encoding: .utf8)
+    let outcome = try run([
+      scene, "--precision", "float", "-o", folder + "/out.png",
+    ])
+    XCTAssertEqual(outcome.status, 1)
+    XCTAssertEqual(
+      outcome.stderr,
+      "\(scene): error: a sphere of radius 1e-25 (centre 0.0 0.0 0.0) is too "
+        + "small beside the scene's largest length, 10.0, for float: its "
+        + "radius squared leaves the range at any common scale; use "
+        + "--precision double\n")
+    XCTAssertFalse(files().contains("out.png"))
+  }
+
   func testSceneError_MissingFile() throws {
     let outcome = try run([folder + "/none.txt", "-o", folder + "/out.png"])
     XCTAssertEqual(outcome.status, 1)
@@ -366,6 +410,21 @@ final class CommandLineTests: XCTestCase {
       "report", "scenes/single-sphere.txt", "--reference", "quad",
     ])
     XCTAssertEqual(unknown.status, 64, unknown.stderr)
+  }
+
+  /// A scene Float cannot hold has Double rows only.
+  func testReport_DoubleOnlySceneHasNoFloatRows() throws {
+    let outcome = try run([
+      "report", "scenes/stiff/unit-sphere-1e200.txt", "--size", "16", "16",
+      "--runs", "1", "--skip-antialiasing",
+    ])
+    XCTAssertEqual(outcome.status, 0, outcome.stderr)
+    let rows = outcome.stdout.split(separator: "\n").dropFirst(2)
+    XCTAssertEqual(
+      rows.map {
+        $0.split(separator: "|")[1].trimmingCharacters(in: .whitespaces)
+      },
+      ["double", "double"], outcome.stdout)
   }
 
   func testReport_AntialiasingRows() throws {

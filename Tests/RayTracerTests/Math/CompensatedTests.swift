@@ -41,6 +41,27 @@ final class CompensatedTests: XCTestCase {
   /// The same in Double, checked in integers: for integer-valued Doubles
   /// below 2^53, a + b and a·b (< 2^106) are exact in Int128, and so are
   /// the integer-valued s, p and e.
+  /// Dekker's product of Veltkamp's halves gives the fused multiply-add's
+  /// exact error, bit for bit, over the components of unit vectors and
+  /// well beyond (magnitudes 2^-200 to 2^200, random signs and bits).
+  func testSplitProduct_SameAsFusedMultiplyAdd() {
+    forEachSeed(50_000, base: 0x7150_0009) { generator, seed in
+      func value() -> Double {
+        let significand = Double.random(in: 1..<2, using: &generator)
+        let exponent = Int.random(in: -200...200, using: &generator)
+        let sign: FloatingPointSign =
+          Bool.random(using: &generator)
+          ? .minus : .plus
+        return Double(sign: sign, exponent: exponent, significand: significand)
+      }
+      let (a, b) = (value(), value())
+      let split = Compensated.splitProduct(a, b)
+      let fused = Compensated.twoProduct(a, b)
+      XCTAssertEqual(split.product, fused.product, "seed \(seed): \(a)·\(b)")
+      XCTAssertEqual(split.error, fused.error, "seed \(seed): \(a)·\(b)")
+    }
+  }
+
   func testTwoSumAndTwoProduct_ExactInDouble() throws {
     guard #available(macOS 15.0, *) else { throw XCTSkip(Self.int128) }
     forEachSeed(20_000, base: 0x7150_0003) { generator, seed in

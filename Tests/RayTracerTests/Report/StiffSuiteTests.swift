@@ -18,6 +18,22 @@ import XCTest
 ///   and 5.7·10⁻⁷° (far spheres): the normal is built from the centre's
 ///   offset from the ray's line, whose absolute error is ε·L, so its angle
 ///   error grows as ε·L/r.
+///
+/// The scaled unit spheres (`unit-sphere-1e±N`, rendered with their lengths
+/// rescaled by a power of two, `LengthScale`) and the triangles hold the
+/// same bounds (measured at most 2.6 ε for t off silhouettes, the ground
+/// triangle 1.1 ε with its t from its plane, `TrianglePlane`), with one
+/// stated exception, measured when it was set:
+/// - unit spheres, t on silhouette pixels: ≤ 8 ε (measured 5.9 ε, Float
+///   at 1e-20; the same scene unscaled, s = 1, measures 4.8 ε in Double):
+///   where the discriminant is small, t's condition number grows as its
+///   inverse square root, so rounding c and the ray once moves t by more.
+///   Off silhouettes (`maxInteriorRelativeError`) they hold 4 ε (measured
+///   1.5 ε).
+///
+/// Double-only scenes (`doubleOnly`: unit spheres beyond 1e±30) hold
+/// numbers Float cannot: reading them for a Float render is an error, so
+/// they are measured in Double only.
 final class StiffSuiteTests: XCTestCase {
   static let size = 64
 
@@ -29,12 +45,24 @@ final class StiffSuiteTests: XCTestCase {
     return parts.joined(separator: "/") + "/scenes/stiff"
   }
 
-  static let scenes = [
-    "far-sphere-1e2", "far-sphere-1e4", "far-sphere-1e6", "far-sphere-1e8",
-    "planet-1e4", "planet-1e6", "planet-1e9", "grazing-sphere", "grazing-plane",
-    "camera-inside-sphere", "sphere-behind-camera", "camera-on-plane",
-    "parallel-plane", "translated-far", "scaled-small",
-  ]
+  static let scenes =
+    [
+      "far-sphere-1e2", "far-sphere-1e4", "far-sphere-1e6", "far-sphere-1e8",
+      "planet-1e4", "planet-1e6", "planet-1e9", "grazing-sphere",
+      "grazing-plane",
+      "camera-inside-sphere", "sphere-behind-camera", "camera-on-plane",
+      "parallel-plane", "translated-far", "scaled-small", "far-triangle-1e4",
+      "ground-triangle", "grazing-triangle", "mesh-translated-1e6",
+    ] + unitSpheres
+
+  static let unitSpheres = [10, 20, 30, 100, 200, 300].flatMap {
+    ["unit-sphere-1e\($0)", "unit-sphere-1e-\($0)"]
+  }
+
+  /// Scenes whose numbers Float cannot hold.
+  static let doubleOnly = [100, 200, 300].flatMap {
+    ["unit-sphere-1e\($0)", "unit-sphere-1e-\($0)"]
+  }
 
   func measure<R: RayScalar>(
     _ name: String, _ precision: Precision, _ method: IntersectionMethod,
@@ -56,12 +84,20 @@ final class StiffSuiteTests: XCTestCase {
   ) throws {
     let normalBound = precision == .float ? 0.01 : 1e-6
     for name in Self.scenes {
+      if precision == .float && Self.doubleOnly.contains(name) { continue }
       let (m, epsilon) = try measure(
         name, precision, .stable, reference: reference)
       let ulps = m.maxRelativeError / epsilon
+      let bound: Double = Self.unitSpheres.contains(name) ? 8 : 4
       XCTAssertLessThanOrEqual(
-        ulps, 4, "\(name) \(precision): max relative error of t \(ulps) ε > 4 ε"
-      )
+        ulps, bound,
+        "\(name) \(precision): max relative error of t \(ulps) ε > \(bound) ε")
+      if Self.unitSpheres.contains(name) {
+        let interior = m.maxInteriorRelativeError / epsilon
+        XCTAssertLessThanOrEqual(
+          interior, 4,
+          "\(name) \(precision): off silhouettes \(interior) ε > 4 ε")
+      }
       XCTAssertEqual(
         m.disagreements, 0, "\(name) \(precision): hit/miss disagreements")
       XCTAssertLessThanOrEqual(
@@ -148,6 +184,24 @@ final class StiffSuiteTests: XCTestCase {
       "a stiff scene without a test, or a test without a scene")
   }
 
+  /// Float reading refuses exactly the double-only scenes, at their
+  /// first number Float cannot hold (the camera's centre).
+  func testDoubleOnly_FloatReadingRefusesExactlyThose() {
+    for name in Self.scenes {
+      let path = "\(Self.stiffFolder)/\(name).txt"
+      let options = SceneOptions(style: .course, precision: .float)
+      do {
+        _ = try SceneParser.parse(contentsOf: path, options: options)
+        XCTAssertFalse(Self.doubleOnly.contains(name), name)
+      } catch {
+        XCTAssertTrue(Self.doubleOnly.contains(name), "\(name): \(error)")
+        XCTAssertTrue(
+          error.description.hasSuffix("; use --precision double"),
+          error.description)
+      }
+    }
+  }
+
   // MARK: - Where naive fails (measured figures in the messages)
 
   func testNaive_FloatLosesASmallFarSphere() throws {
@@ -169,6 +223,15 @@ final class StiffSuiteTests: XCTestCase {
     let (m, _) = try measure("planet-1e9", .float, .naive)
     XCTAssertGreaterThan(m.maxRelativeError, 1)
     XCTAssertGreaterThan(m.maxNormalErrorDegrees, 10)
+  }
+
+  func testNaive_GroundTriangleKeepsFewDigits() throws {
+    // Measured: 6.3·10⁵ ε in Float and 6.4·10⁵ ε in Double: the watertight
+    // t from vertices 10⁶ away (the stable method takes the plane's).
+    for precision in Precision.allCases {
+      let (m, epsilon) = try measure("ground-triangle", precision, .naive)
+      XCTAssertGreaterThan(m.maxRelativeError / epsilon, 1e5)
+    }
   }
 
   func testNaive_FloatFarFromTheOrigin() throws {

@@ -304,7 +304,8 @@ final class OBJReaderTests: XCTestCase {
       Malformed(
         name: "too large", text: "v 1 2 1e999", line: 1, column: 7,
         message:
-          "expected a finite number for the z coordinate of 'v', found '1e999'"),
+          "the z coordinate of 'v': '1e999' is beyond the finite range of "
+          + "double (±1.7976931348623157e+308)"),
       Malformed(
         name: "NaN", text: "v nan 0 0", line: 1, column: 3,
         message:

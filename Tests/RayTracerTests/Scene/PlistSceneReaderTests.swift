@@ -264,7 +264,8 @@ final class PlistSceneReaderTests: XCTestCase {
       Self.camera
         + "<key>Background</key><dict><key>color</key><string>1e999 0 0</string>"
         + "</dict><key>Group</key><array/>",
-      "Background.color: expected 3 numbers (finite, decimal), found \"1e999 0 0\""
+      "Background.color: '1e999' is beyond the finite range of double "
+        + "(±1.7976931348623157e+308)"
     )
   }
 

@@ -504,7 +504,9 @@ final class SceneParserTests: XCTestCase {
         name: "overflowing literal",
         text: "PerspectiveCamera { center 0 0 0 angle 1e999 }", line: 1,
         column: 40,
-        message: "expected a finite number, found '1e999'"),
+        message:
+          "'1e999' is beyond the finite range of double "
+          + "(±1.7976931348623157e+308)"),
       Malformed(
         name: "zero radius",
         text: c + "Group { numObjects 1 Sphere { center 0 0 0 radius 0 } }",

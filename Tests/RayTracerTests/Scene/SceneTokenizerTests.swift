@@ -209,13 +209,15 @@ final class SceneTokenizerTests: XCTestCase {
     for (field, column, message) in [
       (
         "center 1e400 0 0 radius 1", 19,
-        "expected a finite number, found '1e400'"
+        "'1e400' is beyond the finite range of double "
+          + "(±1.7976931348623157e+308)"
       ),
       ("center 0 0 0 radius -1", 32, "'radius' must be positive, found -1"),
       ("center 0 0 0 radius 0", 32, "'radius' must be positive, found 0"),
       (
         "center 0 0 0 radius 1e-400", 32,
-        "'radius' must be positive, found 1e-400"
+        "'1e-400' rounds to zero in double (its smallest normal number is "
+          + "2.2250738585072014e-308)"
       ),
       ("center 0 0 0 radius nan", 32, "expected a finite number, found 'nan'"),
       ("center 0 0 0 radius 1.5x", 32, "expected a number, found '1.5x'"),

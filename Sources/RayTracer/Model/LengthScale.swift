@@ -1,0 +1,230 @@
+/// Rescaling every length of a scene by a power of two, so that the
+/// squares and products of its intersection tests stay inside the render
+/// precision's range at any scale.
+///
+/// A unit-sphere scene scaled by s = 1e25 has |p|² − r² ≈ 1e50, which Float
+/// cannot hold; scaled by 1e-25, its squares underflow to zero. Multiplying
+/// every length (eye, centres, radii, plane offsets, vertices, the rows of a
+/// transform's matrix) by 2^−k is exact while no result is subnormal, and
+/// every test of the render (`SphereIntersection`, `PlaneIntersection`,
+/// `TriangleIntersection`, the ellipsoids' local rays) is built from
+/// +, −, ×, ÷ and √ with no length constant, so each of its roundings is
+/// the rounding of the unscaled computation times a power of two: the
+/// scaled scene's t′ is exactly t·2^−k, its normals (dimensionless) are
+/// the same bits, and its hits and misses the same. The engines trace the
+/// scaled scene and report t = t′·2^k; lights, shading and the camera's
+/// ray directions are untouched.
+///
+/// The scale is chosen once per render from the scene's largest length
+/// (`exponent`): 0, no rescaling at all, while that length is within
+/// 2^±(E/4) of 1 for a precision whose largest exponent is E (2^±31 for
+/// Float, 2^±255 for Double and wider types, whose records are computed
+/// in Double first), which holds every scene the project had
+/// before, so they run exactly as before. Beyond, the scene is brought to
+/// lengths near 1, where a scene spanning up to 2^(E/4) in relative size
+/// keeps its squares normal.
+///
+/// What rescaling cannot save: a scene whose own range of lengths exceeds
+/// what the precision's squares hold (a sphere of radius 1e-25 seen from 3
+/// units in Float, ratio² = 1e50); its squares overflow at any scale.
+public enum LengthScale {
+  /// The k of the scale 2^−k for `all` seen from `eye` in precision `S`:
+  /// 0 when the largest length is within 2^±(E/4) of 1, else the exponent
+  /// of that length, so that the scaled scene's largest length is in
+  /// [1, 2).
+  public static func exponent<S: RayScalar>(
+    _ all: Primitives<Double>, eye: Vector3<Double>, as _: S.Type
+  ) -> Int {
+    let largest = largestLength(all, eye: eye)
+    guard largest > 0, largest.isFinite else { return 0 }
+    // Records are computed from the scene's Double values in Double
+    // (compensated, `CameraRelative`) before they are rounded to S: the
+    // narrower of the two ranges decides, so that a wider S (the Float80
+    // reference) is computed at the same scale as a Double render.
+    let limit =
+      Int(
+        Swift.min(
+          S.greatestFiniteMagnitude.exponent,
+          S(Double.greatestFiniteMagnitude).exponent)) / 4
+    let exponent = Int(largest.exponent)
+    return (-limit...limit).contains(exponent) ? 0 : exponent
+  }
+
+  /// The largest magnitude of any length of the scene: coordinates of
+  /// the eye, centres and vertices, radii, plane offsets and the rows of a
+  /// transformed sphere's matrix.
+  static func largestLength(
+    _ all: Primitives<Double>, eye: Vector3<Double>
+  ) -> Double {
+    var largest = eye.maxMagnitude
+    for sphere in all.spheres {
+      largest = Swift.max(
+        largest, sphere.center.maxMagnitude, sphere.radius.magnitude)
+    }
+    for plane in all.planes {
+      largest = Swift.max(largest, plane.offset.magnitude)
+    }
+    for triangle in all.triangles {
+      largest = Swift.max(
+        largest, triangle.v0.maxMagnitude, triangle.v1.maxMagnitude,
+        triangle.v2.maxMagnitude)
+    }
+    for ellipsoid in all.transformedSpheres {
+      let m = ellipsoid.matrix
+      let reach =
+        ellipsoid.sphere.center.maxMagnitude + ellipsoid.sphere.radius
+      for entry in [
+        m.m00, m.m01, m.m02, m.m10, m.m11, m.m12, m.m20, m.m21,
+        m.m22,
+      ] {
+        largest = Swift.max(largest, entry.magnitude * reach)
+      }
+      largest = Swift.max(
+        largest, m.m03.magnitude, m.m13.magnitude, m.m23.magnitude)
+    }
+    return largest
+  }
+
+  /// Why `scene` cannot be drawn right in `precision` at any common scale,
+  /// or nil: a sphere so small beside the scene's largest length that its
+  /// radius squared, at the scale the render chooses, falls below the
+  /// precision's normal range (a radius of 1e-25 three units from the eye
+  /// in Float). Rescaling moves every length together, so nothing saves
+  /// it; the command line refuses such a scene rather than draw it wrong.
+  public static func problem(_ scene: Scene, precision: Precision)
+    -> String?
+  {
+    let all = scene.root.flattened()
+    let eye = scene.camera.center
+    let exponent =
+      switch precision {
+      case .float: Self.exponent(all, eye: eye, as: Float.self)
+      case .double: Self.exponent(all, eye: eye, as: Double.self)
+      }
+    let scale = factor(-exponent)
+    for sphere in all.spheres {
+      let radius = sphere.radius * scale
+      guard radius * radius < precision.smallestNormal else { continue }
+      let c = sphere.center
+      return "a sphere of radius \(sphere.radius) (centre \(c.x) \(c.y) "
+        + "\(c.z)) is too small beside the scene's largest length, "
+        + "\(largestLength(all, eye: eye)), for \(precision.rawValue): its "
+        + "radius squared leaves the range at any common scale"
+        + (precision == .float ? "; use --precision double" : "")
+    }
+    return nil
+  }
+
+  /// 2^k as a Double (k within Double's exponent range).
+  public static func factor(_ exponent: Int) -> Double {
+    Double(sign: .plus, exponent: exponent, significand: 1)
+  }
+}
+
+extension Primitives {
+  /// Every length times `factor`, a power of two (see `LengthScale`).
+  public func scaled(by factor: Scalar) -> Primitives {
+    var result = Primitives()
+    result.spheres = spheres.map { $0.scaled(by: factor) }
+    result.planes = planes.map { $0.scaled(by: factor) }
+    result.triangles = triangles.map { $0.scaled(by: factor) }
+    result.transformedSpheres = transformedSpheres.map {
+      TransformedSphere(
+        sphere: $0.sphere, matrix: $0.matrix.rowsScaled(by: factor),
+        inverse: $0.inverse.columnsScaled(by: 1 / factor))
+    }
+    return result
+  }
+}
+
+extension Group {
+  /// Every length times `factor`, a power of two (see `LengthScale`).
+  public func scaled(by factor: Scalar) -> Group {
+    Group(objects.map { $0.scaled(by: factor) })
+  }
+}
+
+extension SceneObject {
+  /// Every length times `factor`, a power of two: a transform's matrix M
+  /// becomes S·M (its rows scaled; the object, in its own space, is
+  /// unchanged) and its inverse M⁻¹·S⁻¹.
+  public func scaled(by factor: Scalar) -> SceneObject {
+    switch self {
+    case .sphere(let sphere): .sphere(sphere.scaled(by: factor))
+    case .plane(let plane): .plane(plane.scaled(by: factor))
+    case .triangle(let triangle): .triangle(triangle.scaled(by: factor))
+    case .group(let group): .group(group.scaled(by: factor))
+    case .transform(let transform):
+      .transform(
+        Transform(
+          matrix: transform.matrix.rowsScaled(by: factor),
+          inverse: transform.inverse.columnsScaled(by: 1 / factor),
+          object: transform.object))
+    }
+  }
+}
+
+extension Sphere {
+  func scaled(by factor: Scalar) -> Sphere {
+    Sphere(
+      center: center * factor, radius: radius * factor,
+      materialIndex: materialIndex)
+  }
+}
+
+extension Plane {
+  func scaled(by factor: Scalar) -> Plane {
+    var plane = self
+    plane.offset = offset * factor
+    return plane
+  }
+}
+
+extension Triangle {
+  func scaled(by factor: Scalar) -> Triangle {
+    var triangle = self
+    triangle.v0 = v0 * factor
+    triangle.v1 = v1 * factor
+    triangle.v2 = v2 * factor
+    return triangle
+  }
+}
+
+extension Matrix4 {
+  /// S·M for S = diag(f, f, f, 1): the first three rows times f.
+  func rowsScaled(by f: Scalar) -> Matrix4 {
+    var m = self
+    m.m00 *= f; m.m01 *= f; m.m02 *= f; m.m03 *= f
+    m.m10 *= f; m.m11 *= f; m.m12 *= f; m.m13 *= f
+    m.m20 *= f; m.m21 *= f; m.m22 *= f; m.m23 *= f
+    return m
+  }
+
+  /// The matrix with its rows scaled by a power of two that brings its
+  /// largest linear entry near 1, when that entry is beyond 2^±30; itself
+  /// otherwise. Its cofactors (`cofactorNormal`) then stay in range, their
+  /// directions exactly those of the matrix's.
+  func withLinearPartNearOne() -> Matrix4 {
+    let largest = Swift.max(
+      m00.magnitude, m01.magnitude, m02.magnitude, m10.magnitude,
+      m11.magnitude, m12.magnitude, m20.magnitude, m21.magnitude,
+      m22.magnitude)
+    guard largest > 0, largest.isFinite else { return self }
+    let exponent = Int(largest.exponent)
+    guard !(-30...30).contains(exponent) else { return self }
+    return rowsScaled(
+      by: Scalar(
+        sign: .plus, exponent: Scalar.Exponent(-exponent),
+        significand: 1))
+  }
+
+  /// M·S for S = diag(f, f, f, 1): the first three columns times f.
+  func columnsScaled(by f: Scalar) -> Matrix4 {
+    var m = self
+    m.m00 *= f; m.m01 *= f; m.m02 *= f
+    m.m10 *= f; m.m11 *= f; m.m12 *= f
+    m.m20 *= f; m.m21 *= f; m.m22 *= f
+    m.m30 *= f; m.m31 *= f; m.m32 *= f
+    return m
+  }
+}

@@ -1,0 +1,77 @@
+/// t for triangles much larger than their distance from the ray's origin.
+///
+/// The watertight test takes t from the sheared vertices, Σ wᵢ·zᵢ / Σ wᵢ:
+/// for a ground triangle 10⁶ across seen from one unit above it those z
+/// values are 10⁶ while t is a few units, and t keeps only ε·10⁶ of
+/// relative accuracy. Such a triangle's t is taken from its plane instead,
+/// as a `Plane`'s is (`PlaneIntersection.stableT`): k = n·(v0 − o) from the
+/// exact differences v0 − o, summed compensated and rounded once, divided
+/// by n·d (compensated near grazing). The watertight test still decides
+/// hit or miss and gives the barycentrics, so meshes stay watertight.
+///
+/// Only triangles whose vertices reach beyond `reach` times their plane's
+/// distance from the origin take this path (decided from the same rounded
+/// values in the model and the fast engine), so every other triangle's t
+/// is the watertight test's, bit for bit as before.
+public enum TrianglePlane {
+  /// How far (in multiples of its plane's distance from the eye) a
+  /// triangle's vertices must reach before its t is taken from the plane.
+  public static let reach = 1024.0
+
+  /// The plane of a triangle seen from an origin o: its unit normal n (the
+  /// geometric normal of the vertices relative to o) and k = n·(v0 − o),
+  /// when the triangle is large beside k; nil otherwise.
+  ///
+  /// - Parameters:
+  ///   - relative: the vertices minus o, rounded to S (as the watertight
+  ///     test and the records hold them).
+  ///   - v0, origin: the first vertex and o in the scene's precision, from
+  ///     which v0 − o is taken exactly.
+  public static func make<Input: RayScalar, S: RayScalar>(
+    relative: (Vector3<S>, Vector3<S>, Vector3<S>), normal n: Vector3<S>,
+    v0: Vector3<Input>, origin: Vector3<Input>
+  ) -> (normal: Vector3<S>, distance: S)? {
+    let dx = Compensated.twoSum(v0.x, -origin.x)
+    let dy = Compensated.twoSum(v0.y, -origin.y)
+    let dz = Compensated.twoSum(v0.z, -origin.z)
+    let k: S
+    if S.significandBitCount > Input.significandBitCount {
+      // The wider reference: the differences are exact in S.
+      var terms: [S] = []
+      for (component, d) in [(n.x, dx), (n.y, dy), (n.z, dz)] {
+        let high = Compensated.twoProduct(component, S(d.sum))
+        let low = Compensated.twoProduct(component, S(d.error))
+        terms += [high.product, high.error, low.product, low.error]
+      }
+      k = Compensated.sum(terms)
+    } else {
+      // n is exact in the scene's precision, no narrower than S.
+      var terms: [Input] = []
+      for (component, d) in [(n.x, dx), (n.y, dy), (n.z, dz)] {
+        let high = Compensated.twoProduct(Input(component), d.sum)
+        let low = Compensated.twoProduct(Input(component), d.error)
+        terms += [high.product, high.error, low.product, low.error]
+      }
+      k = terms.withUnsafeMutableBufferPointer {
+        CameraRelative.roundedSum($0)
+      }
+    }
+    let extent = Swift.max(
+      relative.0.maxMagnitude, relative.1.maxMagnitude,
+      relative.2.maxMagnitude)
+    guard extent > S(reach) * k.magnitude else { return nil }
+    return (n, k)
+  }
+
+  /// The plane's t for a ray from o along d, in (tMin, tMax), or nil.
+  @inlinable @inline(__always)
+  public static func t<S: RayScalar>(
+    normal n: Vector3<S>, distance k: S, direction d: Vector3<S>,
+    after tMin: S, before tMax: S
+  ) -> S? {
+    PlaneIntersection.stableT(
+      normal: n, normalTail: .zero, distance: k,
+      isAxisAligned: PlaneIntersection.isAxisAligned(n), direction: d,
+      after: tMin, before: tMax)
+  }
+}

@@ -1,0 +1,45 @@
+/// Triangles much larger than their distance from the eye (`TrianglePlane`):
+/// kept after the others in `triangles`, outside the hierarchy, and tested
+/// one by one with t from their plane, so that the search of every other
+/// triangle runs as it did before they existed.
+extension CompiledScene {
+  /// A large triangle as compiled: its record, the scene's triangle (for
+  /// its material and texture coordinates) and its plane.
+  typealias LargeTriangle = (
+    record: TriangleRecord<Scalar>, triangle: Triangle<Double>,
+    plane: (normal: Vector3<Scalar>, distance: Scalar)
+  )
+
+  /// Appends the large triangles after the ordinary ones (and after the
+  /// hierarchy is built over those).
+  mutating func appendLargeTriangles(_ large: [LargeTriangle]) {
+    ordinaryTriangleCount = triangles.count
+    for (record, triangle, plane) in large {
+      triangles.append(record)
+      triangleMaterials.append(
+        Int32(truncatingIfNeeded: triangle.materialIndex))
+      if !textures.isEmpty {
+        triangleTextureCoordinates.append(
+          triangle.textureCoordinates.map {
+            Triangle<Scalar>.TextureCoordinates(
+              TextureCoordinate($0.t0), TextureCoordinate($0.t1),
+              TextureCoordinate($0.t2))
+          })
+      }
+      trianglePlanes.append(plane)
+    }
+  }
+
+  /// Offers each large triangle's hit to `nearest`.
+  @inline(never)
+  func testLargeTriangles(
+    _ ray: WatertightRay<Scalar>, _ nearest: inout NearestHit<Scalar, Nearest>
+  ) {
+    for (offset, plane) in trianglePlanes.enumerated() {
+      let index = ordinaryTriangleCount + offset
+      nearest.test(.triangle(index)) {
+        triangles[index].intersect(ray, plane: plane, before: $0)?.t
+      }
+    }
+  }
+}
