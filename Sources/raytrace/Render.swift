@@ -181,7 +181,7 @@ struct Render: ParsableCommand {
   var repeats = 0
 
   /// The checked form of the options, made in `validate()`.
-  private struct Plan {
+  struct Plan {
     var scenePath: String
     var settings: RenderSettings
     var files: [OutputFile]
@@ -296,94 +296,6 @@ struct Render: ParsableCommand {
       scenePath: scenePath, settings: settings, files: files, depthRange: range)
   }
 
-  /// Two outputs naming one file, or an output naming the scene, are
-  /// usage errors: compared by identity (`FileIdentity`), not spelling.
-  private static func checkDistinct(
-    _ files: [OutputFile], scenePath: String
-  ) throws {
-    for (index, file) in files.enumerated() {
-      if FileIdentity.same(file.path, scenePath) {
-        throw ValidationError(
-          "\(name(of: file)) would overwrite the scene file "
-            + "'\(escaped(scenePath))'."
-        )
-      }
-      for other in files[..<index]
-      where FileIdentity.same(file.path, other.path) {
-        throw ValidationError(
-          "\(name(of: other)) and \(name(of: file)) name the same file.")
-      }
-    }
-  }
-
-  /// An output as the command line gave it, for messages.
-  private static func name(of file: OutputFile) -> String {
-    let option =
-      file.kind == .depth
-      ? "--depth" : file.kind == .normals ? "--normals" : "-o"
-    return "\(option) '\(escaped(file.path))'"
-  }
-
-  private static func escaped(_ path: String) -> String {
-    SceneParser.escaped(path)
-  }
-
-  /// An output naming a file the scene reads (a mesh or a texture) is a
-  /// usage error, found once the scene is read: nothing is rendered.
-  private func checkOutputs(_ files: [OutputFile], against scene: Scene) throws
-  {
-    let inputs = scene.meshFiles + scene.materials.compactMap(\.texturePath)
-    for file in files {
-      for input in inputs where FileIdentity.same(file.path, input) {
-        printError(
-          "raytrace: error: \(Self.name(of: file)) would overwrite "
-            + "'\(Self.escaped(input))', which the scene reads."
-        )
-        throw ExitCode.validationFailure
-      }
-    }
-  }
-
-  /// The largest image: 32768 on a side and 2²⁸ pixels (the buffers of a
-  /// double render with every output are then about 17 GiB).
-  static let maximumSide = 32768
-  static let maximumPixels = 1 << 28
-
-  /// Refuses, before anything is allocated, an image whose buffers would
-  /// not fit, saying how much memory it would need.
-  private func checkMemory(width: Int, height: Int, outputs: [RenderOutputs])
-    throws
-  {
-    let (pixels, overflow) = width.multipliedReportingOverflow(by: height)
-    guard
-      overflow || width > Self.maximumSide || height > Self.maximumSide
-        || pixels > Self.maximumPixels
-    else { return }
-    let all = outputs.reduce(into: RenderOutputs()) { $0.formUnion($1) }
-    let scalar = precision == .float ? 4.0 : 8.0
-    // Raw buffers (t, normal, colour) plus each 8-bit image and its PNG.
-    var perPixel = 0.0
-    if all.contains(.depth) { perPixel += scalar + 6 }
-    if all.contains(.normals) { perPixel += 3 * scalar + 6 }
-    if all.contains(.shaded) { perPixel += 3 * scalar + 6 }
-    let bytes = Double(width) * Double(height) * perPixel
-    throw ValidationError(
-      "--size \(width) \(height) would need about "
-        + "\(formatted(bytes / 1_073_741_824, digits: 3)) GiB "
-        + "of memory; the limit is \(Self.maximumSide) pixels on a side and "
-        + "\(Self.maximumPixels) pixels in all.")
-  }
-
-  private func checkedRange(_ low: Double, _ high: Double, option: String)
-    throws -> ClosedRange<Double>
-  {
-    guard low.isFinite, high.isFinite, low < high else {
-      throw ValidationError(
-        "\(option) needs finite MIN < MAX; got \(low) \(high).")
-    }
-    return low...high
-  }
-
   func run() throws {
     // Before anything is written or rendered: a terminating signal then
     // removes the temporary outputs, whenever it comes.
@@ -457,50 +369,4 @@ struct Render: ParsableCommand {
 
   nonisolated(unsafe) private static var keptUntilExit: Scene?
 
-  private func printStats(
-    _ report: RenderReport, scenePath: String, parseSeconds: Double
-  ) {
-    let settings = report.settings
-    printError(
-      "scene: \(scenePath): \(report.spheres) spheres, \(report.planes) "
-        + "planes, "
-        + "\(report.triangles) triangles, \(report.ellipsoids) transformed "
-        + "spheres; "
-        + "nearest sphere by \(report.sphereSearch), "
-        + "nearest triangle by "
-        + "\(report.usesTriangleHierarchy ? "BVH" : "testing each")"
-    )
-    printError(
-      "size: \(settings.width)x\(settings.height), \(report.rays) rays, "
-        + "precision \(settings.precision.rawValue), intersection "
-        + "\(settings.method.rawValue), "
-        + "engine \(settings.engine.rawValue), "
-        + "style \(settings.style.rawValue), threads \(settings.threads)")
-    printError(
-      "outputs: \(settings.outputs.names.joined(separator: ", "))"
-        + "; left out: "
-        + (report.leftOut.isEmpty
-          ? "nothing" : report.leftOut.joined(separator: ", "))
-    )
-    if report.texturedMaterials > 0 {
-      printError(
-        report.texturesRead > 0
-          ? "textures: \(report.texturesRead) read for the shaded image"
-          : "textures: none read (no shaded image is requested)")
-    }
-    if let range = report.depthRange {
-      printError("depth range: \(range.lowerBound) to \(range.upperBound)")
-    }
-    printError("parse: \(seconds(parseSeconds))")
-    printError("compile: \(seconds(report.compileSeconds))")
-    let repeats = settings.repeats
-    printError(
-      "render: \(seconds(report.renderSeconds)), "
-        + "\(formatted(report.megaraysPerSecond, digits: 3)) Mrays/s"
-        + (repeats > 0
-          ? " (median of \(repeats) repeated renders; first render "
-            + "\(seconds(report.firstRenderSeconds)))"
-          : ""))
-    printError("write: \(seconds(report.writeSeconds))")
-  }
 }

@@ -1,0 +1,94 @@
+import ArgumentParser
+import RayTracer
+
+/// What the command line is checked for before anything is rendered:
+/// outputs by identity, the image's memory, depth ranges.
+extension Render {
+  /// Two outputs naming one file, or an output naming the scene, are
+  /// usage errors: compared by identity (`FileIdentity`), not spelling.
+  static func checkDistinct(
+    _ files: [OutputFile], scenePath: String
+  ) throws {
+    for (index, file) in files.enumerated() {
+      if FileIdentity.same(file.path, scenePath) {
+        throw ValidationError(
+          "\(name(of: file)) would overwrite the scene file "
+            + "'\(escaped(scenePath))'."
+        )
+      }
+      for other in files[..<index]
+      where FileIdentity.same(file.path, other.path) {
+        throw ValidationError(
+          "\(name(of: other)) and \(name(of: file)) name the same file.")
+      }
+    }
+  }
+
+  /// An output as the command line gave it, for messages.
+  static func name(of file: OutputFile) -> String {
+    let option =
+      file.kind == .depth
+      ? "--depth" : file.kind == .normals ? "--normals" : "-o"
+    return "\(option) '\(escaped(file.path))'"
+  }
+
+  static func escaped(_ path: String) -> String {
+    SceneParser.escaped(path)
+  }
+
+  /// An output naming a file the scene reads (a mesh or a texture) is a
+  /// usage error, found once the scene is read: nothing is rendered.
+  func checkOutputs(_ files: [OutputFile], against scene: Scene) throws
+  {
+    let inputs = scene.meshFiles + scene.materials.compactMap(\.texturePath)
+    for file in files {
+      for input in inputs where FileIdentity.same(file.path, input) {
+        printError(
+          "raytrace: error: \(Self.name(of: file)) would overwrite "
+            + "'\(Self.escaped(input))', which the scene reads."
+        )
+        throw ExitCode.validationFailure
+      }
+    }
+  }
+
+  /// The largest image: 32768 on a side and 2²⁸ pixels (the buffers of a
+  /// double render with every output are then about 17 GiB).
+  static let maximumSide = 32768
+  static let maximumPixels = 1 << 28
+
+  /// Refuses, before anything is allocated, an image whose buffers would
+  /// not fit, saying how much memory it would need.
+  func checkMemory(width: Int, height: Int, outputs: [RenderOutputs])
+    throws
+  {
+    let (pixels, overflow) = width.multipliedReportingOverflow(by: height)
+    guard
+      overflow || width > Self.maximumSide || height > Self.maximumSide
+        || pixels > Self.maximumPixels
+    else { return }
+    let all = outputs.reduce(into: RenderOutputs()) { $0.formUnion($1) }
+    let scalar = precision == .float ? 4.0 : 8.0
+    // Raw buffers (t, normal, colour) plus each 8-bit image and its PNG.
+    var perPixel = 0.0
+    if all.contains(.depth) { perPixel += scalar + 6 }
+    if all.contains(.normals) { perPixel += 3 * scalar + 6 }
+    if all.contains(.shaded) { perPixel += 3 * scalar + 6 }
+    let bytes = Double(width) * Double(height) * perPixel
+    throw ValidationError(
+      "--size \(width) \(height) would need about "
+        + "\(formatted(bytes / 1_073_741_824, digits: 3)) GiB "
+        + "of memory; the limit is \(Self.maximumSide) pixels on a side and "
+        + "\(Self.maximumPixels) pixels in all.")
+  }
+
+  func checkedRange(_ low: Double, _ high: Double, option: String)
+    throws -> ClosedRange<Double>
+  {
+    guard low.isFinite, high.isFinite, low < high else {
+      throw ValidationError(
+        "\(option) needs finite MIN < MAX; got \(low) \(high).")
+    }
+    return low...high
+  }
+}

@@ -1,0 +1,52 @@
+import ArgumentParser
+import RayTracer
+
+/// `--stats`: what a render did, on standard error.
+extension Render {
+  func printStats(
+    _ report: RenderReport, scenePath: String, parseSeconds: Double
+  ) {
+    let settings = report.settings
+    printError(
+      "scene: \(scenePath): \(report.spheres) spheres, \(report.planes) "
+        + "planes, "
+        + "\(report.triangles) triangles, \(report.ellipsoids) transformed "
+        + "spheres; "
+        + "nearest sphere by \(report.sphereSearch), "
+        + "nearest triangle by "
+        + "\(report.usesTriangleHierarchy ? "BVH" : "testing each")"
+    )
+    printError(
+      "size: \(settings.width)x\(settings.height), \(report.rays) rays, "
+        + "precision \(settings.precision.rawValue), intersection "
+        + "\(settings.method.rawValue), "
+        + "engine \(settings.engine.rawValue), "
+        + "style \(settings.style.rawValue), threads \(settings.threads)")
+    printError(
+      "outputs: \(settings.outputs.names.joined(separator: ", "))"
+        + "; left out: "
+        + (report.leftOut.isEmpty
+          ? "nothing" : report.leftOut.joined(separator: ", "))
+    )
+    if report.texturedMaterials > 0 {
+      printError(
+        report.texturesRead > 0
+          ? "textures: \(report.texturesRead) read for the shaded image"
+          : "textures: none read (no shaded image is requested)")
+    }
+    if let range = report.depthRange {
+      printError("depth range: \(range.lowerBound) to \(range.upperBound)")
+    }
+    printError("parse: \(seconds(parseSeconds))")
+    printError("compile: \(seconds(report.compileSeconds))")
+    let repeats = settings.repeats
+    printError(
+      "render: \(seconds(report.renderSeconds)), "
+        + "\(formatted(report.megaraysPerSecond, digits: 3)) Mrays/s"
+        + (repeats > 0
+          ? " (median of \(repeats) repeated renders; first render "
+            + "\(seconds(report.firstRenderSeconds)))"
+          : ""))
+    printError("write: \(seconds(report.writeSeconds))")
+  }
+}
