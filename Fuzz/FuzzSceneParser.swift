@@ -3,7 +3,9 @@
 //
 // Every input must either parse or throw one well-formed `SceneError`; a
 // scene that parses must compile and render a 4x3 image with both kernels
-// without trapping. Anything else stops the fuzzer with the input saved.
+// without trapping (the Float kernel only when the scene reads in float, as
+// the command line requires). Anything else stops the fuzzer with the input
+// saved.
 //
 // Checked always (invariants that hold by construction, so a failure is a
 // bug):
@@ -50,9 +52,25 @@ public func fuzzSceneParser(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt
   render(
     scene, StableKernel<Double>.self, style: .course, hierarchyThreshold: 1,
     strict: strict)
+  // In float only what the command line renders in float: the scene read
+  // again for that precision (numbers beyond it are errors at their
+  // position, checked as every error is) and not refused for a sphere too
+  // small beside the rest at any common scale.
+  let floatScene: Scene
+  do throws(SceneError) {
+    floatScene = try SceneParser.parse(
+      bytes: bytes, file: "fuzz.txt",
+      options: SceneOptions(style: .course, precision: .float))
+  } catch {
+    checkError(error, bytes)
+    return 0
+  }
+  guard LengthScale.problem(floatScene, precision: .float) == nil else {
+    return 0
+  }
   render(
-    scene, NaiveKernel<Float>.self, style: .mit, hierarchyThreshold: nil,
-    strict: strict)
+    floatScene, NaiveKernel<Float>.self, style: .mit,
+    hierarchyThreshold: nil, strict: strict)
   return 0
 }
 
