@@ -3,8 +3,8 @@
 ///
 /// A large file is read in two halves at once, with `pread`, into memory
 /// advised onto 2 MiB pages: the copy out of the page cache and the
-/// zeroing of fresh pages had been about 35 ms of the 0.19 s a 72 MB scene
-/// took to parse, all of it before either thread of the parse could start.
+/// zeroing of fresh pages had been a fifth of a large scene's parse, all
+/// of it before either thread of the parse could start.
 /// Mapping the file instead measured a little faster, but a mapped file
 /// that another process truncates raises SIGBUS mid-parse: a crash where
 /// a read gives a consistent copy, or an error.

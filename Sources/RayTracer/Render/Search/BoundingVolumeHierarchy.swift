@@ -41,10 +41,9 @@
 ///   the centroids' bounds on their widest axis) costs O(n) a level over
 ///   O(log n) levels. Input that SAH splits badly reaches
 ///   `forcedMedianDepth`, past which object medians (found by sorting)
-///   take over: O(n log² n) at worst. 10⁶ random spheres take about 0.5 s
-///   of CPU in a release build on the project's 2-core machine; from 2¹⁶
-///   spheres the root's two subtrees are built on two threads, which cut
-///   the wall time 1.8× when the second core was idle. A ray visits
+///   take over: O(n log² n) at worst. From 2¹⁶ primitives the root's two
+///   subtrees are built on two threads (measurements in
+///   docs/PERFORMANCE.md). A ray visits
 ///   O(log n) nodes when the spheres do not overlap much, and all of them
 ///   in the worst case (every sphere along the ray).
 public struct BoundingVolumeHierarchy<Scalar: RayScalar>: Sendable {
