@@ -15,17 +15,7 @@ extension CompiledScene {
   mutating func appendLargeTriangles(_ large: [LargeTriangle]) {
     ordinaryTriangleCount = triangles.count
     for (record, triangle, plane) in large {
-      triangles.append(record)
-      triangleMaterials.append(
-        Int32(truncatingIfNeeded: triangle.materialIndex))
-      if !textures.isEmpty {
-        triangleTextureCoordinates.append(
-          triangle.textureCoordinates.map {
-            Triangle<Scalar>.TextureCoordinates(
-              TextureCoordinate($0.t0), TextureCoordinate($0.t1),
-              TextureCoordinate($0.t2))
-          })
-      }
+      appendTriangle(record, triangle)
       trianglePlanes.append(plane)
     }
   }

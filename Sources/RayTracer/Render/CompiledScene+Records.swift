@@ -108,3 +108,23 @@ struct EllipsoidRecord<Kernel: IntersectionKernel>: Sendable {
         inverseRows.0.dot(d), inverseRows.1.dot(d), inverseRows.2.dot(d)))
   }
 }
+
+extension CompiledScene {
+  /// Appends a compiled triangle with the model triangle's material and,
+  /// for a textured render, its texture coordinates.
+  mutating func appendTriangle(
+    _ record: TriangleRecord<Scalar>, _ triangle: Triangle<Double>
+  ) {
+    triangles.append(record)
+    triangleMaterials.append(
+      Int32(truncatingIfNeeded: triangle.materialIndex))
+    if !textures.isEmpty {
+      triangleTextureCoordinates.append(
+        triangle.textureCoordinates.map {
+          Triangle<Scalar>.TextureCoordinates(
+            TextureCoordinate($0.t0), TextureCoordinate($0.t1),
+            TextureCoordinate($0.t2))
+        })
+    }
+  }
+}

@@ -201,17 +201,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
         large.append((record, triangle, plane))
         continue
       }
-      triangles.append(record)
-      triangleMaterials.append(
-        Int32(truncatingIfNeeded: triangle.materialIndex))
-      if !textures.isEmpty {
-        triangleTextureCoordinates.append(
-          triangle.textureCoordinates.map {
-            Triangle<Scalar>.TextureCoordinates(
-              TextureCoordinate($0.t0), TextureCoordinate($0.t1),
-              TextureCoordinate($0.t2))
-          })
-      }
+      appendTriangle(record, triangle)
     }
     // The model's triangles are not needed again: freed before the build.
     all.triangles = []
