@@ -35,6 +35,13 @@
 #   FUZZ_OPT="-Onone"   optimisation (default -O: measured 7,000 executions
 #                       per second on the scene fuzzer against 1,400 with
 #                       -Onone, which finds slightly more edges per input)
+#   FUZZ_SANITIZERS=fuzzer
+#                       coverage only, no AddressSanitizer (default
+#                       fuzzer,address); objects go to .build/fuzz/obj-O-noasan/.
+#                       For harnesses whose code holds no unsafe pointer
+#                       (the command line): Swift's own checks trap on
+#                       every out-of-bounds access and overflow, and the
+#                       harness runs about twice as fast (docs/ROBUSTNESS.md)
 #   FUZZ_STRICT=1       scene fuzzer: also require finite unit normals and
 #                       finite colours of every hit (see the harness)
 #   SWIFTC              the compiler (default: swiftc on PATH)
@@ -59,8 +66,18 @@ mode=${1:-scene}
 [ $# -gt 0 ] && shift
 
 build=.build/fuzz
-objects=$build/obj${opt// /}
-flags=(-parse-as-library -wmo -gline-tables-only $opt -sanitize=fuzzer,address)
+sanitizers=${FUZZ_SANITIZERS:-fuzzer,address}
+case $sanitizers in
+  fuzzer | fuzzer,address) ;;
+  *)
+    echo "FUZZ_SANITIZERS='$sanitizers': expected 'fuzzer,address' or 'fuzzer'" >&2
+    exit 64
+    ;;
+esac
+variant=${opt// /}
+[ "$sanitizers" = fuzzer ] && variant+=-noasan
+objects=$build/obj$variant
+flags=(-parse-as-library -wmo -gline-tables-only $opt -sanitize=$sanitizers)
 
 # The two packages: the stand-ins' folders, or the real packages' checkouts
 # chosen as Package.swift chooses them.
@@ -85,7 +102,7 @@ if [ -n "$packages$parser_path$numerics_path" ]; then
     parser_path=${parser_path:-.build/checkouts/swift-argument-parser}
     numerics_path=${numerics_path:-.build/checkouts/swift-numerics}
   fi
-  objects=$build/obj-real${opt// /}
+  objects=$build/obj-real$variant
 fi
 mkdir -p "$objects"
 
