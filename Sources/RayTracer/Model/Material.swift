@@ -30,32 +30,67 @@ public struct Material<Scalar: RayScalar>: Hashable, Sendable {
       shininess: Scalar(other.shininess), texturePath: other.texturePath)
   }
 
-  /// ambient·kd + Σ lights [kd·max(0, n·l) + ks·max(0, −d·r)^shininess]·light,
-  /// with r = 2(n·l)n − l and the specular term only where n·l > 0.
-  ///
-  /// - Parameters:
-  ///   - normal: unit normal at the hit.
-  ///   - viewDirection: the unit ray direction d (towards the hit).
+  /// What the shading formula reads: the material without its texture.
+  @inlinable
+  public var surface: Surface {
+    Surface(diffuse: diffuse, specular: specular, shininess: shininess)
+  }
+
+  /// The colour seen at a hit: `Surface.shade`.
   @inlinable
   public func shade(
     point: Vector3<Scalar>, normal: Vector3<Scalar>,
     viewDirection: Vector3<Scalar>, ambient: RGB<Scalar>,
     lights: [Light<Scalar>], attenuate: Bool
   ) -> RGB<Scalar> {
-    var color = ambient * diffuse
-    for light in lights {
-      let (toLight, lightColor) = light.illumination(
-        at: point, attenuate: attenuate)
-      let cosine = normal.dot(toLight)
-      guard cosine > 0 else { continue }
-      var intensity = diffuse * cosine
-      let reflected = normal * (2 * cosine) - toLight
-      let highlight = -viewDirection.dot(reflected)
-      if highlight > 0 {
-        intensity += specular * Scalar.pow(highlight, shininess)
-      }
-      color += intensity * lightColor
+    surface.shade(
+      point: point, normal: normal, viewDirection: viewDirection,
+      ambient: ambient, lights: lights, attenuate: attenuate)
+  }
+
+  /// A material's colours and shininess: plain numbers, so that the fast
+  /// engine keeps an array of them and copies one per hit for nothing (a
+  /// `Material`, holding a string, is copied through reference counting).
+  public struct Surface: Hashable, Sendable {
+    public var diffuse: RGB<Scalar>
+    public var specular: RGB<Scalar>
+    public var shininess: Scalar
+
+    @inlinable
+    public init(diffuse: RGB<Scalar>, specular: RGB<Scalar>, shininess: Scalar)
+    {
+      self.diffuse = diffuse
+      self.specular = specular
+      self.shininess = shininess
     }
-    return color
+
+    /// ambient·kd + Σ lights [kd·max(0, n·l) + ks·max(0, −d·r)^shininess]·light,
+    /// with r = 2(n·l)n − l and the specular term only where n·l > 0.
+    ///
+    /// - Parameters:
+    ///   - normal: unit normal at the hit.
+    ///   - viewDirection: the unit ray direction d (towards the hit).
+    @inlinable
+    public func shade(
+      point: Vector3<Scalar>, normal: Vector3<Scalar>,
+      viewDirection: Vector3<Scalar>, ambient: RGB<Scalar>,
+      lights: [Light<Scalar>], attenuate: Bool
+    ) -> RGB<Scalar> {
+      var color = ambient * diffuse
+      for light in lights {
+        let (toLight, lightColor) = light.illumination(
+          at: point, attenuate: attenuate)
+        let cosine = normal.dot(toLight)
+        guard cosine > 0 else { continue }
+        var intensity = diffuse * cosine
+        let reflected = normal * (2 * cosine) - toLight
+        let highlight = -viewDirection.dot(reflected)
+        if highlight > 0 {
+          intensity += specular * Scalar.pow(highlight, shininess)
+        }
+        color += intensity * lightColor
+      }
+      return color
+    }
   }
 }

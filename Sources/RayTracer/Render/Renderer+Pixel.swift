@@ -42,11 +42,10 @@ extension Renderer {
     ray: CameraRay<Kernel.Scalar>, normal: Vector3<Kernel.Scalar>,
     scene: CompiledScene<Kernel>, attenuate: Bool
   ) -> RGB<Kernel.Scalar> {
-    scene.shadingMaterial(of: hit.what, ray).shade(
+    scene.shade(
+      hit.what, ray,
       point: scene.eye + ray.direction * (hit.t * scene.lengthScale),
-      normal: normal,
-      viewDirection: ray.direction, ambient: scene.ambient,
-      lights: scene.lights, attenuate: attenuate)
+      normal: normal, attenuate: attenuate)
   }
 
   /// The pixel's colour: the mean of its samples' (`PixelSamples`).
