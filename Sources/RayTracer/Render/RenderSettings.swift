@@ -84,6 +84,15 @@ public enum PixelFilter: String, CaseIterable, Sendable {
   /// drawn from it by inverting its distribution, so equally weighted too.
   case tent
 
+  /// How far from the pixel's centre, in pixels along each axis, a
+  /// sample can lie: the largest |`offset(u)`|.
+  public var reach: Double {
+    switch self {
+    case .box: 0.5
+    case .tent: 1
+    }
+  }
+
   /// The offset from the pixel's centre, in pixels, of stratum position
   /// u ∈ [0, 1).
   @inlinable

@@ -48,9 +48,14 @@ extension Renderer {
       normal: normal, attenuate: attenuate)
   }
 
-  /// The pixel's colour: the mean of its samples' (`PixelSamples`).
-  static func supersampledColor<Kernel: IntersectionKernel, R: RayScalar>(
-    column: Int, row: Int, scene: CompiledScene<Kernel>,
+  /// The pixel's colour: the mean of its samples' (`PixelSamples`), their
+  /// spheres found by `search`, which must answer for every ray of the
+  /// pixel's filter support.
+  @inline(__always)
+  static func supersampledColor<
+    Kernel: IntersectionKernel, R: RayScalar, Search: NearestSphereSearch
+  >(
+    column: Int, row: Int, by search: Search, scene: CompiledScene<Kernel>,
     camera: PerspectiveCamera<R>,
     settings: RenderSettings
   ) -> RGB<Kernel.Scalar> {
@@ -58,17 +63,28 @@ extension Renderer {
     var sum = RGB<S>.zero
     var samples = PixelSamples(
       column: column, row: row, camera: camera, settings: settings)
-    while let sample = samples.next() {
-      let ray = CameraRay(
-        origin: scene.rayOrigin, direction: Vector3<S>(sample))
-      guard let hit = scene.nearest(ray) else {
-        sum += scene.background
-        continue
+    // The directions first, as for a tile's centre rays (`renderRow`): the
+    // square roots and divisions of one sample overlap the next's instead
+    // of waiting behind each search. The colours are summed in the same
+    // order either way.
+    withUnsafeTemporaryAllocation(of: Vector3<S>.self, capacity: samples.count)
+    { directions in
+      var count = 0
+      while let sample = samples.next() {
+        (directions.baseAddress! + count).initialize(to: Vector3<S>(sample))
+        count += 1
       }
-      let normal = scene.normal(of: hit.what, ray, t: hit.t)
-      sum += shade(
-        hit, ray: ray, normal: normal, scene: scene,
-        attenuate: settings.style == .mit)
+      for direction in directions[0..<count] {
+        let ray = CameraRay(origin: scene.rayOrigin, direction: direction)
+        guard let hit = scene.nearest(ray, by: search) else {
+          sum += scene.background
+          continue
+        }
+        let normal = scene.normal(of: hit.what, ray, t: hit.t)
+        sum += shade(
+          hit, ray: ray, normal: normal, scene: scene,
+          attenuate: settings.style == .mit)
+      }
     }
     return sum / S(samples.count)
   }

@@ -24,8 +24,7 @@ extension Renderer {
       }
       return
     }
-    // Supersampled rays leave the pixel centres' frusta: no culling then.
-    guard scene.cullsPerTile && settings.samples == 1 else {
+    guard scene.cullsPerTile else {
       if scene.usesHierarchy {
         renderTiles(
           rows, by: SphereHierarchy(), columns, scene, camera, settings,
@@ -37,16 +36,30 @@ extension Renderer {
       return
     }
     let aspect = R(settings.height) / R(settings.width)
-    let top: R = settings.style.screenY(
-      row: rows.lowerBound, height: settings.height)
-    let bottom: R = settings.style.screenY(
-      row: rows.upperBound - 1, height: settings.height)
+    // Supersampled rays leave the pixel centres' pyramid, by at most the
+    // filter's reach (`PixelFilter.reach`) in pixels; the pyramid is
+    // widened by that and by 1/16 pixel more, which covers the rounding of
+    // a sample's screen coordinates (a few ε of a value within 2).
+    let reach = settings.samples > 1 ? settings.filter.reach + 1.0 / 16 : 0
+    let (stepX, stepY) = (
+      R(reach) * (columns.count > 1 ? columns[1] - columns[0] : 2),
+      R(reach)
+        * (settings.height > 1
+          ? settings.style.screenY(row: 0, height: settings.height)
+            - settings.style.screenY(row: 1, height: settings.height) : 2)
+    )
+    let top: R =
+      settings.style.screenY(row: rows.lowerBound, height: settings.height)
+      + stepY
+    let bottom: R =
+      settings.style.screenY(row: rows.upperBound - 1, height: settings.height)
+      - stepY
     withUnsafeTemporaryAllocation(of: Int32.self, capacity: scene.sphereCount) {
       candidates in
       for start in stride(from: 0, to: settings.width, by: tileWidth) {
         let tile = start..<min(start + tileWidth, settings.width)
         let (left, right) = (
-          columns[tile.lowerBound], columns[tile.upperBound - 1]
+          columns[tile.lowerBound] - stepX, columns[tile.upperBound - 1] + stepX
         )
         func corner(_ x: R, _ y: R) -> Vector3<Double> {
           Vector3<Double>(camera.rayDirection(x: x, y: y, aspect: aspect))
@@ -118,8 +131,8 @@ extension Renderer {
         let pixel = row * width + column
         if wantsColor && settings.samples > 1 {
           targets.color[pixel] = supersampledColor(
-            column: column, row: row, scene: scene, camera: camera,
-            settings: settings)
+            column: column, row: row, by: search, scene: scene,
+            camera: camera, settings: settings)
         }
         let hit = scene.nearest(ray, by: search)
         store(
