@@ -147,15 +147,13 @@ public enum RenderJob {
     var clock = Stopwatch()
     let compiled = CompiledScene<Kernel>(
       scene, textures: textures,
-      // Single-sample renders cull spheres per tile below the projection
-      // threshold and project them above it, building a hierarchy only
-      // where the projection declines (`Renderer.renderReportingSearch`).
-      hierarchyThreshold: settings.hierarchyThreshold
-        ?? (settings.samples == 1
-          ? .max : BoundingVolumeHierarchy<Kernel.Scalar>.defaultThreshold),
-      projectionThreshold: settings.samples == 1
-        ? settings.projectionThreshold
-          ?? CompiledScene<Kernel>.projectionThreshold : .max)
+      // Spheres are culled per tile below the projection threshold and
+      // projected above it, a hierarchy built only where the projection
+      // declines (`Renderer.renderReportingSearch`); supersampled renders
+      // too, their tiles and boxes widened by the filter's reach.
+      hierarchyThreshold: settings.hierarchyThreshold ?? .max,
+      projectionThreshold: settings.projectionThreshold
+        ?? CompiledScene<Kernel>.projectionThreshold)
     let compileSeconds = clock.lap()
     let rendered = repeatedly(
       settings.repeats, progress: progress, clock: &clock

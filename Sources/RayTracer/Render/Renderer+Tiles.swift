@@ -17,10 +17,20 @@ extension Renderer {
     if let tiles {
       let width = ScreenTiles<Kernel>.tileWidth
       for start in stride(from: 0, to: settings.width, by: width) {
-        renderProjectedTile(
-          tiles.entries(ofTileAt: start, row: rows.lowerBound),
-          columns: start..<min(start + width, settings.width), rows: rows,
-          columns, scene, camera, settings, targets)
+        let entries = tiles.entries(ofTileAt: start, row: rows.lowerBound)
+        let tile = start..<min(start + width, settings.width)
+        if settings.samples == 1 || targets.depth.count > 0
+          || targets.normals.count > 0
+        {
+          renderProjectedTile(
+            entries, columns: tile, rows: rows, columns, scene, camera,
+            settings, targets)
+        }
+        if settings.samples > 1 && targets.color.count > 0 {
+          renderProjectedSamples(
+            entries, columns: tile, rows: rows, scene, camera, settings,
+            targets)
+        }
       }
       return
     }
@@ -138,89 +148,6 @@ extension Renderer {
         store(
           hit, ray: ray, pixel: pixel, scene: scene, settings: settings,
           targets: targets)
-      }
-    }
-  }
-
-  /// Renders one tile of `ScreenTiles`: each sphere tested only against the
-  /// rays of its box's pixels, in scene order with the flat loop's strict
-  /// `<`, then each pixel's search continued past the spheres.
-  static func renderProjectedTile<Kernel: IntersectionKernel, R: RayScalar>(
-    _ entries: ArraySlice<ScreenTiles<Kernel>.Entry>,
-    columns tileColumns: Range<Int>, rows: Range<Int>,
-    _ columns: UnsafeBufferPointer<R>, _ scene: CompiledScene<Kernel>,
-    _ camera: PerspectiveCamera<R>, _ settings: RenderSettings,
-    _ targets: Targets<Kernel.Scalar>
-  ) {
-    typealias S = Kernel.Scalar
-    let aspect = R(settings.height) / R(settings.width)
-    let capacity =
-      ScreenTiles<Kernel>.tileWidth * ScreenTiles<Kernel>.tileHeight
-    precondition(
-      tileColumns.count <= ScreenTiles<Kernel>.tileWidth
-        && rows.count <= ScreenTiles<Kernel>.tileHeight)
-    withUnsafeTemporaryAllocation(of: CameraRay<S>.self, capacity: capacity) {
-      rays in
-      withUnsafeTemporaryAllocation(of: S.self, capacity: capacity) {
-        nearestT in
-        withUnsafeTemporaryAllocation(of: Int32.self, capacity: capacity) {
-          nearestEntry in
-          for row in rows {
-            let y: R = settings.style.screenY(row: row, height: settings.height)
-            let rowBase = camera.rowBase(y: y, aspect: aspect)
-            for column in tileColumns {
-              let slot =
-                (row - rows.lowerBound) * ScreenTiles<Kernel>.tileWidth + column
-                - tileColumns.lowerBound
-              (rays.baseAddress! + slot).initialize(
-                to: CameraRay(
-                  origin: scene.rayOrigin,
-                  direction: Vector3<S>(
-                    camera.rayDirection(x: columns[column], rowBase: rowBase))))
-              (nearestT.baseAddress! + slot).initialize(to: .infinity)
-              (nearestEntry.baseAddress! + slot).initialize(to: -1)
-            }
-          }
-          // The nearest entry rather than sphere: its copy of the record is
-          // in cache for the normal, the scene's is not. Per pixel, the tie
-          // rule of `NearestHit` in two arrays: entries in scene order, each
-          // asked only for a hit strictly before the pixel's best.
-          let entryBase = entries.startIndex
-          for position in entries.indices {
-            let entry = entries[position]
-            let record = entry.record
-            for row in Int(entry.firstRow)...Int(entry.lastRow) {
-              for column in Int(entry.firstColumn)...Int(entry.lastColumn) {
-                let slot = row * ScreenTiles<Kernel>.tileWidth + column
-                if let t = Kernel.intersect(
-                  record, rays[slot], before: nearestT[slot])
-                {
-                  nearestT[slot] = t
-                  nearestEntry[slot] = Int32(
-                    truncatingIfNeeded: position - entryBase)
-                }
-              }
-            }
-          }
-          for row in rows {
-            for column in tileColumns {
-              let slot =
-                (row - rows.lowerBound) * ScreenTiles<Kernel>.tileWidth + column
-                - tileColumns.lowerBound
-              let position = Int(nearestEntry[slot])
-              let entry = position >= 0 ? entries[entryBase + position] : nil
-              let hit = scene.nearest(
-                rays[slot],
-                after: NearestHit(
-                  nearestT[slot], entry.map { .sphere(Int($0.sphere)) }))
-              store(
-                hit, ray: rays[slot], pixel: row * settings.width + column,
-                scene: scene,
-                settings: settings, targets: targets,
-                sphereRecord: entry?.record)
-            }
-          }
-        }
       }
     }
   }

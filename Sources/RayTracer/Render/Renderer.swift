@@ -43,7 +43,7 @@ public enum Renderer {
   ) -> (buffers: RenderBuffers<Kernel.Scalar>, search: SphereSearch) {
     var scene = scene
     var tiles: ScreenTiles<Kernel>?
-    if scene.projectsSpheres && settings.samples == 1 {
+    if scene.projectsSpheres {
       let camera = PerspectiveCamera<Kernel.Scalar>(scene.camera).styled(
         settings.style)
       tiles = ScreenTiles(

@@ -80,7 +80,12 @@ struct ScreenProjection: Sendable {
   /// to the eye) in front of the eye: every pixel when the ball comes
   /// near the plane through the eye parallel to the screen, where its
   /// silhouette has no bounded box, or when anything is not finite.
-  func pixelBox(center p: Vector3<Double>, reach ρ: Double) -> PixelBox {
+  ///
+  /// - Parameter margin: pixels added on every side, for rays that leave
+  ///   from a pixel's centre by up to that many pixels along each axis.
+  func pixelBox(center p: Vector3<Double>, reach ρ: Double, margin: Double = 0)
+    -> PixelBox
+  {
     let p3 = r3.dot(p)
     let n3 = r3Length
     // A hit point h = t·d has r₃·h > 0 and |h − p| ≤ ρ, so r₃·p > −ρ|r₃|.
@@ -111,8 +116,9 @@ struct ScreenProjection: Sendable {
       style.row(screenY: y.upper, height: height),
       style.row(screenY: y.lower, height: height)
     )
-    let padColumns = 4 * Double(Float.ulpOfOne) * Double(width) + 0x1p-30
-    let padRows = 4 * Double(Float.ulpOfOne) * Double(height) + 0x1p-30
+    let padColumns =
+      4 * Double(Float.ulpOfOne) * Double(width) + 0x1p-30 + margin
+    let padRows = 4 * Double(Float.ulpOfOne) * Double(height) + 0x1p-30 + margin
     func clamped(_ value: Double, _ limit: Int) -> Int32 {
       Int32(Swift.min(Swift.max(value, -1), Double(limit)))
     }

@@ -1,6 +1,7 @@
 /// Spheres sorted by the screen tiles their silhouettes may cover: the
-/// primary-ray search of a single-sample render turned around, object by
-/// object, as molecular viewers draw millions of atoms.
+/// primary-ray search turned around, object by object, as molecular viewers
+/// draw millions of atoms. In a supersampled render each box is widened by
+/// the pixel filter's reach, and every sample is searched the same way.
 ///
 /// A camera ray through screen point (x, y) has direction M·(x, y, 1) with
 /// M = [u, (H/W)·v, D·w]; the ball of radius ρ about p is reachable from
@@ -77,6 +78,10 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
     let projection = ScreenProjection(
       camera: PerspectiveCamera<Double>(camera), width: width, height: height,
       style: settings.style)
+    // A supersampled pixel's rays reach out to the filter's reach from its
+    // centre (`PixelSamples`); 1/16 pixel more covers the rounding of
+    // their screen coordinates (a few ε of a value within 2).
+    let margin = settings.samples > 1 ? settings.filter.reach + 1.0 / 16 : 0
     let count = scene.spheres.count
     let parts =
       count >= 1 << 14 ? Swift.max(1, Swift.min(settings.threads, 2)) : 1
@@ -101,7 +106,8 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
           var area = 0
           for index in range {
             let (center, reach) = scene.cullBound(records[index])
-            let box = projection.pixelBox(center: center, reach: reach)
+            let box = projection.pixelBox(
+              center: center, reach: reach, margin: margin)
             (boxes.baseAddress! + index).initialize(to: box)
             guard !box.isEmpty else { continue }
             area += box.area

@@ -5,8 +5,9 @@ import XCTest
 /// Spheres projected onto screen tiles (`ScreenTiles`) against the searches
 /// already shown equal to testing every sphere (the BVH, and culling per
 /// tile): every pixel's depth, normal and colour the same, bit for bit,
-/// ties between coincident spheres included; and, sphere by sphere, every
-/// pixel whose ray the kernel reports hitting lies in the sphere's box.
+/// ties between coincident spheres included, supersampled renders too; and,
+/// sphere by sphere, every pixel whose ray the kernel reports hitting lies
+/// in the sphere's box.
 final class ScreenTilesTests: XCTestCase {
   /// A render of `scene` with the spheres searched as `search` asks:
   /// projected (threshold 0), by BVH (threshold 0), or culled per tile.
@@ -137,6 +138,18 @@ final class ScreenTilesTests: XCTestCase {
           assertSameImages(
             kernel, scene, settings,
             "\(Kernel.self) \(style) \(width)×\(height)")
+        }
+        // Supersampled: boxes and culled pyramids widened by the filter's
+        // reach must hold every sample of every pixel.
+        for filter in PixelFilter.allCases {
+          var settings = RenderSettings(
+            width: 19, height: 11, outputs: [.depth, .shaded], style: style,
+            threads: 2)
+          settings.samples = 4
+          settings.filter = filter
+          assertSameImages(
+            kernel, scene, settings,
+            "\(Kernel.self) \(style) 4 samples, \(filter)")
         }
       }
     }
