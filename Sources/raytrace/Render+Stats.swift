@@ -13,8 +13,7 @@ extension Render {
         + "\(report.triangles) triangles, \(report.ellipsoids) transformed "
         + "spheres; "
         + "nearest sphere by \(report.sphereSearch), "
-        + "nearest triangle by "
-        + "\(report.usesTriangleHierarchy ? "BVH" : "testing each")"
+        + "nearest triangle by \(report.triangleSearch)"
     )
     printError(
       "size: \(settings.width)x\(settings.height), \(report.rays) rays, "

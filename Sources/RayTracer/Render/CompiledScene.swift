@@ -43,6 +43,9 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   var ordinaryTriangleCount = 0
   /// Per large triangle, in order, its plane seen from the eye.
   var trianglePlanes: [(normal: Vector3<Scalar>, distance: Scalar)] = []
+  /// Triangles left in order for `ScreenTiles` to project, without a
+  /// hierarchy (see `triangleProjectionThreshold`).
+  internal(set) var projectsTriangles = false
   var triangleHierarchy: BoundingVolumeHierarchy<Scalar>?
   var wideTriangleHierarchy: WideHierarchy<Scalar>?
   /// Spheres under transforms that are not similarities.
@@ -71,6 +74,10 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   ///     in scene order for `ScreenTiles`, with neither a BVH nor culling
   ///     data; only for single-sample renders, whose rays all pass through
   ///     pixel centres.
+  ///   - triangleProjectionThreshold: the count of triangles from which
+  ///     they are left in order for `ScreenTiles` rather than given a
+  ///     hierarchy; projection is declined, and the hierarchy built, when
+  ///     the render finds them too many on screen.
   ///   - textures: per material, the texture a shaded render maps onto
   ///     triangles with texture coordinates (see `TextureLoader`); empty
   ///     for untextured scenes and for renders without a shaded image.
@@ -78,7 +85,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     _ scene: Scene, kernel: Kernel.Type = Kernel.self,
     textures: [Texture?] = [],
     hierarchyThreshold: Int = BoundingVolumeHierarchy<Scalar>.defaultThreshold,
-    projectionThreshold: Int = .max
+    projectionThreshold: Int = .max, triangleProjectionThreshold: Int = .max
   ) {
     camera = PerspectiveCamera(scene.camera)
     eye = Vector3(scene.camera.center)
@@ -130,7 +137,8 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     compileMeshesAndEllipsoids(
       consume all, eye: eyeDouble,
       hierarchyThreshold: Swift.min(
-        hierarchyThreshold, BoundingVolumeHierarchy<Scalar>.defaultThreshold))
+        hierarchyThreshold, BoundingVolumeHierarchy<Scalar>.defaultThreshold),
+      projectionThreshold: triangleProjectionThreshold)
   }
 
   /// Builds the BVH over the spheres and stores them in its order: at
@@ -171,7 +179,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// The triangles and ellipsoids of `all`, compiled for this kernel.
   private mutating func compileMeshesAndEllipsoids(
     _ all: consuming Primitives<Double>, eye: Vector3<Double>,
-    hierarchyThreshold: Int
+    hierarchyThreshold: Int, projectionThreshold: Int
   ) {
     let cameraRelative = Kernel.frameOrigin(eye: eye) == .zero
     func frame(_ point: Vector3<Double>) -> Vector3<Scalar> {
@@ -208,37 +216,13 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     }
     // The model's triangles are not needed again: freed before the build.
     all.triangles = []
-    if triangles.count >= hierarchyThreshold {
-      let bvh = triangles.withUnsafeBufferPointer { records in
-        BoundingVolumeHierarchy<Scalar>(count: records.count) {
-          let record = records[$0]
-          let lower = Vector3(
-            Swift.min(record.v0.x, record.v1.x, record.v2.x),
-            Swift.min(record.v0.y, record.v1.y, record.v2.y),
-            Swift.min(record.v0.z, record.v1.z, record.v2.z))
-          let upper = Vector3(
-            Swift.max(record.v0.x, record.v1.x, record.v2.x),
-            Swift.max(record.v0.y, record.v1.y, record.v2.y),
-            Swift.max(record.v0.z, record.v1.z, record.v2.z))
-          // Rounded out by a few ulps of the largest coordinate: the
-          // watertight test decides on the sheared, rounded vertices.
-          let pad =
-            4 * Scalar.ulpOfOne
-            * Swift.max(lower.maxMagnitude, upper.maxMagnitude)
-          let padding = Vector3(pad, pad, pad)
-          return (lower: lower - padding, upper: upper + padding)
-        }
-      }
-      bvh.arrange(&triangles)
-      bvh.arrange(&triangleMaterials)
-      if !triangleTextureCoordinates.isEmpty {
-        bvh.arrange(&triangleTextureCoordinates)
-      }
-      triangleHierarchy = bvh
-      wideTriangleHierarchy = WideHierarchy(
-        bvh, rayOrigin: Kernel.frameOrigin(eye: eye))
-    }
+    let ordinary = triangles.count
     appendLargeTriangles(large)
+    if ordinary >= projectionThreshold {
+      projectsTriangles = true
+    } else if ordinary >= hierarchyThreshold {
+      buildTriangleHierarchy()
+    }
     for ellipsoid in all.transformedSpheres {
       let objectEye = ellipsoid.inverse.transformPoint(eye)
       let inverse = Matrix4<Scalar>(ellipsoid.inverse)
@@ -299,35 +283,47 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     _ ray: CameraRay<Scalar>, after spheres: NearestHit<Scalar, Nearest>
   ) -> (t: Scalar, what: Nearest)? {
     var nearest = spheres
+    testPlanes(ray, &nearest)
+    if triangles.isEmpty {
+      testEllipsoids(ray, &nearest)
+      return nearest.hit
+    }
+    let prepared = WatertightRay(
+      Ray(origin: ray.origin, direction: ray.direction))
+    testOrdinaryTriangles(ray, prepared, &nearest)
+    testLargeTrianglesAndEllipsoids(ray, prepared, &nearest)
+    return nearest.hit
+  }
+
+  /// Offers the planes' hits to `nearest`, in order.
+  @inline(__always)
+  func testPlanes(
+    _ ray: CameraRay<Scalar>, _ nearest: inout NearestHit<Scalar, Nearest>
+  ) {
     for index in planes.indices {
       nearest.test(.plane(index)) {
         Kernel.intersect(planes[index], ray, before: $0)
       }
     }
-    if !triangles.isEmpty {
-      let prepared = WatertightRay(
-        Ray(origin: ray.origin, direction: ray.direction))
-      triangles.withUnsafeBufferPointer { records in
-        if let triangleHierarchy {
-          let leaves = TriangleLeaves(records: records, ray: prepared)
-          if let hit = triangleHierarchy.nearest(
-            ray, before: nearest.t, leaves: leaves,
-            wide: wideTriangleHierarchy)
-          {
-            nearest.test(.triangle(hit.index)) { _ in hit.t }
-          }
-        } else {
-          for index in 0..<ordinaryTriangleCount {
-            nearest.test(.triangle(index)) {
-              records[index].intersect(prepared, before: $0)?.t
-            }
-          }
-        }
-      }
-      if ordinaryTriangleCount < triangles.count {
-        testLargeTriangles(prepared, &nearest)
-      }
+  }
+
+  /// Offers the hits of what comes after the ordinary triangles in the
+  /// search: the large triangles, then the ellipsoids.
+  @inline(__always)
+  func testLargeTrianglesAndEllipsoids(
+    _ ray: CameraRay<Scalar>, _ prepared: WatertightRay<Scalar>,
+    _ nearest: inout NearestHit<Scalar, Nearest>
+  ) {
+    if ordinaryTriangleCount < triangles.count {
+      testLargeTriangles(prepared, &nearest)
     }
+    testEllipsoids(ray, &nearest)
+  }
+
+  @inline(__always)
+  func testEllipsoids(
+    _ ray: CameraRay<Scalar>, _ nearest: inout NearestHit<Scalar, Nearest>
+  ) {
     for index in ellipsoids.indices {
       nearest.test(.ellipsoid(index)) {
         Kernel.intersect(
@@ -335,7 +331,6 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
           before: $0)
       }
     }
-    return nearest.hit
   }
 
   func normal(of what: Nearest, _ ray: CameraRay<Scalar>, t: Scalar) -> Vector3<

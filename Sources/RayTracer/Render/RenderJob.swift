@@ -26,7 +26,8 @@ public struct RenderReport: Sendable {
   public var usesHierarchy: Bool { sphereSearch == .hierarchy }
   public var triangles: Int = 0
   public var ellipsoids: Int = 0
-  public var usesTriangleHierarchy = false
+  /// How each pixel's nearest triangle was found.
+  public var triangleSearch = Renderer.TriangleSearch.everyTriangle
   public var compileSeconds: Double
   /// The render's time; with `settings.repeats`, the median of the
   /// repeated renders.
@@ -153,7 +154,9 @@ public enum RenderJob {
       // too, their tiles and boxes widened by the filter's reach.
       hierarchyThreshold: settings.hierarchyThreshold ?? .max,
       projectionThreshold: settings.projectionThreshold
-        ?? CompiledScene<Kernel>.projectionThreshold)
+        ?? CompiledScene<Kernel>.projectionThreshold,
+      triangleProjectionThreshold: settings.triangleProjectionThreshold
+        ?? CompiledScene<Kernel>.triangleProjectionThreshold)
     let compileSeconds = clock.lap()
     let rendered = repeatedly(
       settings.repeats, progress: progress, clock: &clock
@@ -169,7 +172,7 @@ public enum RenderJob {
     report.planes = compiled.planeCount
     report.triangles = compiled.triangleCount
     report.ellipsoids = compiled.ellipsoidCount
-    report.usesTriangleHierarchy = compiled.usesTriangleHierarchy
+    report.triangleSearch = rendered.result.triangleSearch
     return report
   }
 
@@ -187,7 +190,7 @@ public enum RenderJob {
         CourseEngine.render(
           scene, textures: textures, settings: output.settings,
           progress: progress),
-        .everyObject
+        .everyObject, .everyTriangle
       )
     }
     var report = try write(
@@ -223,7 +226,8 @@ public enum RenderJob {
   }
 
   private typealias Rendered<S: RayScalar> = (
-    buffers: RenderBuffers<S>, search: Renderer.SphereSearch
+    buffers: RenderBuffers<S>, search: Renderer.SphereSearch,
+    triangleSearch: Renderer.TriangleSearch
   )
 
   /// Encodes and writes every file from `buffers`, and reports.

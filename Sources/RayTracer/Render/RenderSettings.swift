@@ -35,8 +35,13 @@ public struct RenderSettings: Sendable {
   public var threads: Int
   /// Spheres from which a BVH is built.
   public var hierarchyThreshold: Int?
-  /// Spheres from which a render projects them onto screen tiles instead (`CompiledScene.projectionThreshold` when nil).
+  /// Spheres from which a render projects them onto screen tiles instead
+  /// (`CompiledScene.projectionThreshold` when nil).
   public var projectionThreshold: Int?
+  /// Triangles from which a render projects them onto screen tiles instead
+  /// of building a hierarchy (`CompiledScene.triangleProjectionThreshold`
+  /// when nil).
+  public var triangleProjectionThreshold: Int?
   /// Camera rays per pixel for the shaded image, a perfect square: jittered
   /// on a √N × √N grid of strata. Depth and normals take the pixel's centre.
   public var samples: Int = 1

@@ -9,6 +9,7 @@ extension Renderer {
   /// `<`, then each pixel's search continued past the spheres.
   static func renderProjectedTile<Kernel: IntersectionKernel, R: RayScalar>(
     _ entries: ArraySlice<ScreenTiles<Kernel>.Entry>,
+    _ triangleEntries: ArraySlice<ScreenTiles<Kernel>.TriangleEntry>,
     columns tileColumns: Range<Int>, rows: Range<Int>,
     _ columns: UnsafeBufferPointer<R>, _ scene: CompiledScene<Kernel>,
     _ camera: PerspectiveCamera<R>, _ settings: RenderSettings,
@@ -45,24 +46,18 @@ extension Renderer {
           }
           testEntries(
             entries, rays: rays, nearestT: nearestT, nearestEntry: nearestEntry)
-          for row in rows {
-            for column in tileColumns {
-              let slot =
-                (row - rows.lowerBound) * ScreenTiles<Kernel>.tileWidth + column
-                - tileColumns.lowerBound
-              let position = Int(nearestEntry[slot])
-              let entry =
-                position >= 0 ? entries[entries.startIndex + position] : nil
-              let hit = scene.nearest(
-                rays[slot],
-                after: NearestHit(
-                  nearestT[slot], entry.map { .sphere(Int($0.sphere)) }))
-              store(
-                hit, ray: rays[slot], pixel: row * settings.width + column,
-                scene: scene,
-                settings: settings, targets: targets,
-                sphereRecord: entry?.record)
-            }
+          finishSearches(
+            entries, triangleEntries, rows: rows.count,
+            columns: tileColumns.count, scene: scene, rays: rays,
+            nearestT: nearestT, nearestEntry: nearestEntry
+          ) { slot, hit, entry in
+            let row = rows.lowerBound + slot / ScreenTiles<Kernel>.tileWidth
+            let column =
+              tileColumns.lowerBound + slot % ScreenTiles<Kernel>.tileWidth
+            store(
+              hit, ray: rays[slot], pixel: row * settings.width + column,
+              scene: scene, settings: settings, targets: targets,
+              sphereRecord: entry?.record)
           }
         }
       }
@@ -109,6 +104,7 @@ extension Renderer {
   /// `supersampledColor` gives, bit for bit.
   static func renderProjectedSamples<Kernel: IntersectionKernel, R: RayScalar>(
     _ entries: ArraySlice<ScreenTiles<Kernel>.Entry>,
+    _ triangleEntries: ArraySlice<ScreenTiles<Kernel>.TriangleEntry>,
     columns tileColumns: Range<Int>, rows: Range<Int>,
     _ scene: CompiledScene<Kernel>, _ camera: PerspectiveCamera<R>,
     _ settings: RenderSettings, _ targets: Targets<Kernel.Scalar>
@@ -161,36 +157,27 @@ extension Renderer {
                 testEntries(
                   entries, rays: rays, nearestT: nearestT,
                   nearestEntry: nearestEntry)
-                for row in rows {
-                  for column in tileColumns {
-                    let slot = slot(row, column)
-                    let position = Int(nearestEntry[slot])
-                    let entry =
-                      position >= 0
-                      ? entries[entries.startIndex + position] : nil
-                    let ray = rays[slot]
-                    guard
-                      let hit = scene.nearest(
-                        ray,
-                        after: NearestHit(
-                          nearestT[slot], entry.map { .sphere(Int($0.sphere)) })
-                      )
-                    else {
-                      sums[slot] += scene.background
-                      continue
-                    }
-                    // A sphere found here is the entry's: only planes,
-                    // triangles and ellipsoids are searched after it.
-                    let normal =
-                      if case .sphere = hit.what, let entry {
-                        Kernel.normal(entry.record, ray, t: hit.t)
-                      } else {
-                        scene.normal(of: hit.what, ray, t: hit.t)
-                      }
-                    sums[slot] += shade(
-                      hit, ray: ray, normal: normal, scene: scene,
-                      attenuate: attenuate)
+                finishSearches(
+                  entries, triangleEntries, rows: rows.count,
+                  columns: tileColumns.count, scene: scene, rays: rays,
+                  nearestT: nearestT, nearestEntry: nearestEntry
+                ) { slot, hit, entry in
+                  let ray = rays[slot]
+                  guard let hit else {
+                    sums[slot] += scene.background
+                    return
                   }
+                  // A sphere found here is the entry's: only other kinds
+                  // are searched after it.
+                  let normal =
+                    if case .sphere = hit.what, let entry {
+                      Kernel.normal(entry.record, ray, t: hit.t)
+                    } else {
+                      scene.normal(of: hit.what, ray, t: hit.t)
+                    }
+                  sums[slot] += shade(
+                    hit, ray: ray, normal: normal, scene: scene,
+                    attenuate: attenuate)
                 }
               }
               for row in rows {
@@ -200,6 +187,104 @@ extension Renderer {
                 }
               }
             }
+          }
+        }
+      }
+    }
+  }
+
+  /// Each pixel's search of a tile finished after its spheres
+  /// (`testEntries`): planes, then the projected triangles of
+  /// `triangleEntries`, the large ones included (each tested against the
+  /// rays of its box's pixels, in order with the flat loop's strict `<`),
+  /// then the ellipsoids; or, when the scene does not project its triangles,
+  /// the scene's own search after the spheres. `body` gets each slot, its
+  /// nearest hit and the sphere entry found, if any.
+  @inline(__always)
+  static func finishSearches<Kernel: IntersectionKernel>(
+    _ entries: ArraySlice<ScreenTiles<Kernel>.Entry>,
+    _ triangleEntries: ArraySlice<ScreenTiles<Kernel>.TriangleEntry>,
+    rows: Int, columns: Int, scene: CompiledScene<Kernel>,
+    rays: UnsafeMutableBufferPointer<CameraRay<Kernel.Scalar>>,
+    nearestT: UnsafeMutableBufferPointer<Kernel.Scalar>,
+    nearestEntry: UnsafeMutableBufferPointer<Int32>,
+    _ body:
+      (
+        Int, (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest)?,
+        ScreenTiles<Kernel>.Entry?
+      ) -> Void
+  ) {
+    typealias S = Kernel.Scalar
+    typealias Search = NearestHit<S, CompiledScene<Kernel>.Nearest>
+    let tileWidth = ScreenTiles<Kernel>.tileWidth
+    func sphere(_ slot: Int) -> ScreenTiles<Kernel>.Entry? {
+      let position = Int(nearestEntry[slot])
+      return position >= 0 ? entries[entries.startIndex + position] : nil
+    }
+    guard scene.projectsTriangles else {
+      for row in 0..<rows {
+        for column in 0..<columns {
+          let slot = row * tileWidth + column
+          let entry = sphere(slot)
+          body(
+            slot,
+            scene.nearest(
+              rays[slot],
+              after: NearestHit(
+                nearestT[slot], entry.map { .sphere(Int($0.sphere)) })),
+            entry)
+        }
+      }
+      return
+    }
+    let capacity = tileWidth * ScreenTiles<Kernel>.tileHeight
+    withUnsafeTemporaryAllocation(of: Search.self, capacity: capacity) {
+      searches in
+      withUnsafeTemporaryAllocation(
+        of: WatertightRay<S>.self, capacity: capacity
+      ) { prepared in
+        for row in 0..<rows {
+          for column in 0..<columns {
+            let slot = row * tileWidth + column
+            let ray = rays[slot]
+            var search = Search(
+              nearestT[slot], sphere(slot).map { .sphere(Int($0.sphere)) })
+            scene.testPlanes(ray, &search)
+            (searches.baseAddress! + slot).initialize(to: search)
+            (prepared.baseAddress! + slot).initialize(
+              to: WatertightRay(Ray(origin: ray.origin, direction: ray.direction)))
+          }
+        }
+        // The large triangles (`TrianglePlane`) come after the ordinary
+        // ones in index order, as in the search without tiles, and take t
+        // from their planes.
+        let ordinary = scene.ordinaryTriangleCount
+        scene.triangles.withUnsafeBufferPointer { records in
+          for entry in triangleEntries {
+            let index = Int(entry.triangle)
+            let record = records[index]
+            let plane =
+              index < ordinary ? nil : scene.trianglePlanes[index - ordinary]
+            for row in Int(entry.firstRow)...Int(entry.lastRow) {
+              for column in Int(entry.firstColumn)...Int(entry.lastColumn) {
+                let slot = row * tileWidth + column
+                searches[slot].test(.triangle(index)) {
+                  if let plane {
+                    record.intersect(prepared[slot], plane: plane, before: $0)?
+                      .t
+                  } else {
+                    record.intersect(prepared[slot], before: $0)?.t
+                  }
+                }
+              }
+            }
+          }
+        }
+        for row in 0..<rows {
+          for column in 0..<columns {
+            let slot = row * tileWidth + column
+            scene.testEllipsoids(rays[slot], &searches[slot])
+            body(slot, searches[slot].hit, sphere(slot))
           }
         }
       }

@@ -18,18 +18,20 @@ extension Renderer {
       let width = ScreenTiles<Kernel>.tileWidth
       for start in stride(from: 0, to: settings.width, by: width) {
         let entries = tiles.entries(ofTileAt: start, row: rows.lowerBound)
+        let triangleEntries = tiles.triangleEntries(
+          ofTileAt: start, row: rows.lowerBound)
         let tile = start..<min(start + width, settings.width)
         if settings.samples == 1 || targets.depth.count > 0
           || targets.normals.count > 0
         {
           renderProjectedTile(
-            entries, columns: tile, rows: rows, columns, scene, camera,
-            settings, targets)
+            entries, triangleEntries, columns: tile, rows: rows, columns,
+            scene, camera, settings, targets)
         }
         if settings.samples > 1 && targets.color.count > 0 {
           renderProjectedSamples(
-            entries, columns: tile, rows: rows, scene, camera, settings,
-            targets)
+            entries, triangleEntries, columns: tile, rows: rows, scene, camera,
+            settings, targets)
         }
       }
       return

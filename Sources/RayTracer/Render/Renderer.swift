@@ -33,23 +33,43 @@ public enum Renderer {
     }
   }
 
-  /// `render`, and how it searched the spheres: a scene compiled for
-  /// projection is projected onto screen tiles, or given its hierarchy
-  /// when `ScreenTiles` declines it.
+  /// How a render found each pixel's nearest triangle.
+  public enum TriangleSearch: Sendable, Equatable, CustomStringConvertible {
+    case everyTriangle, hierarchy, screenTiles
+
+    /// In words for `--stats`.
+    public var description: String {
+      switch self {
+      case .everyTriangle: "testing each"
+      case .hierarchy: "BVH"
+      case .screenTiles: "screen tiles"
+      }
+    }
+  }
+
+  /// `render`, and how it searched the spheres and triangles: a scene
+  /// compiled for projection is projected onto screen tiles, or given its
+  /// hierarchies when `ScreenTiles` declines it.
   static func renderReportingSearch<Kernel: IntersectionKernel>(
     _ scene: CompiledScene<Kernel>, settings: RenderSettings,
     overlapLimit: Int = ScreenTiles<Kernel>.overlapLimit,
     progress: (@Sendable (Int) -> Void)? = nil
-  ) -> (buffers: RenderBuffers<Kernel.Scalar>, search: SphereSearch) {
+  ) -> (
+    buffers: RenderBuffers<Kernel.Scalar>, search: SphereSearch,
+    triangleSearch: TriangleSearch
+  ) {
     var scene = scene
     var tiles: ScreenTiles<Kernel>?
-    if scene.projectsSpheres {
+    if scene.projectsSpheres || scene.projectsTriangles {
       let camera = PerspectiveCamera<Kernel.Scalar>(scene.camera).styled(
         settings.style)
       tiles = ScreenTiles(
         scene, camera: camera, settings: settings, overlapLimit: overlapLimit)
     }
-    if scene.projectsSpheres && tiles == nil { scene.buildSphereHierarchy() }
+    if tiles == nil {
+      if scene.projectsSpheres { scene.buildSphereHierarchy() }
+      if scene.projectsTriangles { scene.buildTriangleHierarchy() }
+    }
     let buffers = render(
       scene, settings: settings, rays: Kernel.Scalar.self, tiles: tiles,
       progress: progress)
@@ -58,9 +78,12 @@ public enum Renderer {
       ? .screenTiles
       : scene.usesHierarchy
         ? .hierarchy
-        : scene.cullsPerTile && settings.samples == 1
-          ? .culledPerTile : .everySphere
-    return (buffers, search)
+        : scene.cullsPerTile ? .culledPerTile : .everySphere
+    let triangleSearch: TriangleSearch =
+      scene.projectsTriangles
+      ? .screenTiles
+      : scene.usesTriangleHierarchy ? .hierarchy : .everyTriangle
+    return (buffers, search, triangleSearch)
   }
 
   /// Renders with camera rays generated in precision `RayPrecision` and then

@@ -148,10 +148,10 @@ final class LengthScaleTests: XCTestCase {
       let compiled = CompiledScene<K>(
         scene, hierarchyThreshold: search == .hierarchy ? 0 : .max,
         projectionThreshold: search == .screenTiles ? 0 : .max)
-      let (buffers, used) = Renderer.renderReportingSearch(
+      let rendered = Renderer.renderReportingSearch(
         compiled, settings: settings, overlapLimit: .max)
-      XCTAssertEqual(used, search)
-      return buffers
+      XCTAssertEqual(rendered.search, search)
+      return rendered.buffers
     }
     func check<K: IntersectionKernel>(_ kernel: K.Type, _ exponents: [Int])
       throws

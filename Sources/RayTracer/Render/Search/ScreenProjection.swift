@@ -76,6 +76,41 @@ struct ScreenProjection: Sendable {
       lastRow: Int32(height - 1))
   }
 
+  /// Where on the screen the rays that pass within a ball in front of the
+  /// eye may lie.
+  enum Extent {
+    /// Wholly behind the plane through the eye parallel to the screen.
+    case behind
+    /// Near that plane, where the silhouette has no bounded box, or
+    /// anything not finite.
+    case unbounded
+    /// Screen x and y intervals, padded for this arithmetic's rounding.
+    case within(x: (lower: Double, upper: Double), y: (lower: Double, upper: Double))
+  }
+
+  /// The screen extent of the rays that may pass within `reach` of
+  /// `center` (relative to the eye) in front of the eye.
+  func extent(center p: Vector3<Double>, reach ρ: Double) -> Extent {
+    let p3 = r3.dot(p)
+    let n3 = r3Length
+    // A hit point h = t·d has r₃·h > 0 and |h − p| ≤ ρ, so r₃·p > −ρ|r₃|.
+    if p3 <= -ρ * n3 * (1 + 0x1p-20) { return .behind }
+    // With r₃·p ≥ 2ρ|r₃| the ball is at most 30° wide seen from that
+    // plane, A below stays within [3/4, 1]·(r₃·p)², and every quantity is
+    // a sum of terms of known size (`Λ`).
+    guard p3 >= 2 * ρ * n3, p3.isFinite, ρ.isFinite, p.isFinite else {
+      return .unbounded
+    }
+    // Shared by both axes: A, 1/A, 1/P₃ and |p| + ρ (one division each
+    // rather than one per axis; the extra rounding is far inside the pad).
+    let shared = IntervalTerms(
+      p3: p3, ρ: ρ, a: p3 * p3 - ρ * ρ * r3LengthSquared, extent: p.length + ρ)
+    guard let x = screenInterval(axes.x, p, shared),
+      let y = screenInterval(axes.y, p, shared)
+    else { return .unbounded }
+    return .within(x: x, y: y)
+  }
+
   /// The pixels whose rays may pass within `reach` of `center` (relative
   /// to the eye) in front of the eye: every pixel when the ball comes
   /// near the plane through the eye parallel to the screen, where its
@@ -86,23 +121,51 @@ struct ScreenProjection: Sendable {
   func pixelBox(center p: Vector3<Double>, reach ρ: Double, margin: Double = 0)
     -> PixelBox
   {
-    let p3 = r3.dot(p)
-    let n3 = r3Length
-    // A hit point h = t·d has r₃·h > 0 and |h − p| ≤ ρ, so r₃·p > −ρ|r₃|.
-    if p3 <= -ρ * n3 * (1 + 0x1p-20) { return .empty }
-    // With r₃·p ≥ 2ρ|r₃| the ball is at most 30° wide seen from that
-    // plane, A below stays within [3/4, 1]·(r₃·p)², and every quantity is
-    // a sum of terms of known size (`Λ`).
-    guard p3 >= 2 * ρ * n3, p3.isFinite, ρ.isFinite, p.isFinite else {
+    pixelBox(extent(center: p, reach: ρ), margin: margin)
+  }
+
+  /// The pixels whose rays may pass within `reach` of the triangle with
+  /// corners `a`, `b` and `c` (relative to the eye). The points within ρ
+  /// of a triangle are the convex hull of the balls of radius ρ about its
+  /// corners, and seen from the eye, with all three balls in front, the
+  /// hull's screen image is the hull of theirs: its box is the union of
+  /// the balls' boxes. A ball behind or near the eye's plane gives every
+  /// pixel, unless all three are behind.
+  func pixelBox(
+    triangle a: Vector3<Double>, _ b: Vector3<Double>, _ c: Vector3<Double>,
+    reach ρ: Double, margin: Double
+  ) -> PixelBox {
+    let extents = (
+      extent(center: a, reach: ρ), extent(center: b, reach: ρ),
+      extent(center: c, reach: ρ)
+    )
+    switch extents {
+    case (.behind, .behind, .behind):
+      return .empty
+    case (.within(let x0, let y0), .within(let x1, let y1),
+      .within(let x2, let y2)):
+      return pixelBox(
+        .within(
+          x: (Swift.min(x0.lower, x1.lower, x2.lower),
+              Swift.max(x0.upper, x1.upper, x2.upper)),
+          y: (Swift.min(y0.lower, y1.lower, y2.lower),
+              Swift.max(y0.upper, y1.upper, y2.upper))),
+        margin: margin)
+    default:
       return whole
     }
-    // Shared by both axes: A, 1/A, 1/P₃ and |p| + ρ (one division each
-    // rather than one per axis; the extra rounding is far inside the pad).
-    let shared = IntervalTerms(
-      p3: p3, ρ: ρ, a: p3 * p3 - ρ * ρ * r3LengthSquared, extent: p.length + ρ)
-    guard let x = screenInterval(axes.x, p, shared),
-      let y = screenInterval(axes.y, p, shared)
-    else { return whole }
+  }
+
+  /// The pixels of an extent: none behind the eye, every one when
+  /// unbounded, else those whose own screen coordinates lie in the
+  /// intervals, widened by `margin` pixels.
+  func pixelBox(_ extent: Extent, margin: Double) -> PixelBox {
+    let (x, y): ((lower: Double, upper: Double), (lower: Double, upper: Double))
+    switch extent {
+    case .behind: return .empty
+    case .unbounded: return whole
+    case .within(let xInterval, let yInterval): (x, y) = (xInterval, yInterval)
+    }
     // The pixels whose own screen coordinates lie in the intervals. Those
     // were rounded in the render's precision (`screenX`: a division and a
     // subtraction, within 2 ε of the exact value on [−1, 1]); 4 ε of the

@@ -31,7 +31,7 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
   /// list through a cache line that stays resident. With 16-pixel tiles
   /// (32,400 at 1920×1080) every entry written and every record read
   /// missed the cache.
-  static var tileWidth: Int { 256 }
+  static var tileWidth: Int { ScreenTilesGeometry.tileWidth }
   static var tileHeight: Int { Renderer.rowsPerBatch }
 
   /// A sphere's pixels within one tile: columns and rows relative to the
@@ -45,12 +45,24 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
     var lastRow: UInt8
   }
 
+  /// A triangle's pixels within one tile (`TriangleTiles`), as `Entry`.
+  struct TriangleEntry: Sendable {
+    var triangle: Int32
+    var firstColumn: UInt16
+    var lastColumn: UInt16
+    var firstRow: UInt8
+    var lastRow: UInt8
+  }
+
   let tilesAcross: Int
   /// Tile t's entries are entries[starts[t]..<starts[t + 1]], tiles row by row.
   let starts: [Int]
   let entries: [Entry]
-  /// The sum of the spheres' boxes in pixels: the sphere tests the render
-  /// makes.
+  /// The same for the triangles when the scene projects them, else empty.
+  let triangleStarts: [Int]
+  let triangleEntries: [TriangleEntry]
+  /// The sum of the spheres' and triangles' boxes in pixels: the tests
+  /// the render makes.
   let coveredPixels: Int
 
   /// Where a hierarchy wins: boxes summing to more than this many times
@@ -62,8 +74,18 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
     return entries[starts[tile]..<starts[tile + 1]]
   }
 
+  /// The triangles' entries of the tile; empty unless the scene projects
+  /// its triangles.
+  func triangleEntries(ofTileAt column: Int, row: Int) -> ArraySlice<
+    TriangleEntry
+  > {
+    guard !triangleStarts.isEmpty else { return [] }
+    let tile = (row / Self.tileHeight) * tilesAcross + column / Self.tileWidth
+    return triangleEntries[triangleStarts[tile]..<triangleStarts[tile + 1]]
+  }
+
   /// Nil when the boxes sum to more than `overlapLimit` times the image,
-  /// or the entries to more than twice the pixels and spheres together.
+  /// or the entries to more than twice the pixels and primitives together.
   ///
   /// - Parameter camera: the camera the render builds its rays with
   ///   (`styled`), in the precision of the render's rays.
@@ -73,8 +95,6 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
   ) {
     let (width, height) = (settings.width, settings.height)
     tilesAcross = (width + Self.tileWidth - 1) / Self.tileWidth
-    let tilesDown = (height + Self.tileHeight - 1) / Self.tileHeight
-    let tileCount = tilesAcross * tilesDown
     let projection = ScreenProjection(
       camera: PerspectiveCamera<Double>(camera), width: width, height: height,
       style: settings.style)
@@ -82,32 +102,115 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
     // centre (`PixelSamples`); 1/16 pixel more covers the rounding of
     // their screen coordinates (a few ε of a value within 2).
     let margin = settings.samples > 1 ? settings.filter.reach + 1.0 / 16 : 0
-    let count = scene.spheres.count
-    let parts =
-      count >= 1 << 14 ? Swift.max(1, Swift.min(settings.threads, 2)) : 1
-    // Pass one: each sphere's box, and per part how many entries each tile
-    // gets from it, so that pass two writes every entry straight into place.
+    let limit = Double(overlapLimit) * Double(width * height)
+    var spheres = TileLists<Entry>(
+      tilesAcross: tilesAcross, width: width, height: height)
+    let sphereArea = scene.spheres.withUnsafeBufferPointer { records in
+      spheres.sort(
+        count: records.count, threads: settings.threads, areaLimit: limit,
+        box: { index in
+          let (center, reach) = scene.cullBound(records[index])
+          return projection.pixelBox(
+            center: center, reach: reach, margin: margin)
+        },
+        entry: { index, columns, rows in
+          Entry(
+            record: records[index], sphere: Int32(truncatingIfNeeded: index),
+            firstColumn: columns.0, lastColumn: columns.1, firstRow: rows.0,
+            lastRow: rows.1)
+        })
+    }
+    guard let sphereArea else { return nil }
+    var triangleArea = 0
+    if scene.projectsTriangles {
+      var triangles = TileLists<TriangleEntry>(
+        tilesAcross: tilesAcross, width: width, height: height)
+      let area = scene.triangles.withUnsafeBufferPointer { records in
+        triangles.sort(
+          count: scene.triangles.count, threads: settings.threads,
+          areaLimit: limit - Double(sphereArea),
+          box: { index in
+            scene.triangleBox(records[index], projection, margin: margin)
+          },
+          entry: { index, columns, rows in
+            TriangleEntry(
+              triangle: Int32(truncatingIfNeeded: index),
+              firstColumn: columns.0, lastColumn: columns.1, firstRow: rows.0,
+              lastRow: rows.1)
+          })
+      }
+      guard let area else { return nil }
+      triangleArea = area
+      triangleStarts = triangles.starts
+      triangleEntries = triangles.entries
+    } else {
+      triangleStarts = []
+      triangleEntries = []
+    }
+    coveredPixels = sphereArea + triangleArea
+    starts = spheres.starts
+    entries = spheres.entries
+  }
+}
+
+/// Primitives sorted into screen tiles by their pixel boxes, each tile's
+/// entries in the primitives' order: the lists of `ScreenTiles`.
+struct TileLists<Entry> {
+  let tilesAcross: Int
+  let tileCount: Int
+  let width: Int
+  let height: Int
+  /// Tile t's entries are entries[starts[t]..<starts[t + 1]].
+  private(set) var starts: [Int] = []
+  private(set) var entries: [Entry] = []
+
+  init(tilesAcross: Int, width: Int, height: Int) {
+    let tileHeight = Renderer.rowsPerBatch
+    self.tilesAcross = tilesAcross
+    tileCount = tilesAcross * ((height + tileHeight - 1) / tileHeight)
+    self.width = width
+    self.height = height
+  }
+
+  /// Sorts primitives 0..<count into the tiles their `box` touches, each
+  /// clipped to the tile by `entry` (columns and rows relative to the
+  /// tile's corner, both ends included), and returns the boxes' total area;
+  /// nil, with nothing stored, when that area exceeds `areaLimit` or the
+  /// entries exceed twice the pixels and primitives together (past that
+  /// their memory would outgrow the render's own buffers: a hierarchy
+  /// then).
+  ///
+  /// From 2¹⁴ primitives, with `threads` above 1, the boxes are computed
+  /// and the entries written on two threads, each over half of them; tile by tile the first half's
+  /// entries come first, so every tile lists its primitives in order.
+  mutating func sort(
+    count: Int, threads: Int, areaLimit: Double,
+    box: (Int) -> PixelBox,
+    entry: (Int, (UInt16, UInt16), (UInt8, UInt8)) -> Entry
+  ) -> Int? {
+    let (tilesAcross, tileCount) = (self.tilesAcross, self.tileCount)
+    let (tileWidth, tileHeight) = (
+      ScreenTilesGeometry.tileWidth, Renderer.rowsPerBatch
+    )
+    let parts = count >= 1 << 14 ? Swift.max(1, Swift.min(threads, 2)) : 1
+    // Pass one: each primitive's box, and per part how many entries each
+    // tile gets from it, so that pass two writes every entry into place.
     var tileCounts = [[Int32]](repeating: [], count: parts)
     var covered = [Int](repeating: 0, count: parts)
-    let (tilesAcross, tileWidth, tileHeight) = (
-      tilesAcross, Self.tileWidth, Self.tileHeight
-    )
     let boxes = [PixelBox](unsafeUninitializedCapacity: count) {
       boxes, initialized in
       Memory.adviseHugePages(UnsafeMutableRawBufferPointer(boxes))
-      scene.spheres.withUnsafeBufferPointer { records in
-        let shared = Shared((records, boxes))
+      withoutActuallyEscaping(box) { box in
+        let (sharedBox, shared) = (Shared(box), Shared(boxes))
         let results = Shared(
           UnsafeMutableBufferPointer<([Int32], Int)>.allocate(capacity: parts))
         defer { results.value.deallocate() }
         Parallel.inParts(count, parts) { part, range in
-          let (records, boxes) = shared.value
+          let (box, boxes) = (sharedBox.value, shared.value)
           var counts = [Int32](repeating: 0, count: tileCount)
           var area = 0
           for index in range {
-            let (center, reach) = scene.cullBound(records[index])
-            let box = projection.pixelBox(
-              center: center, reach: reach, margin: margin)
+            let box = box(index)
             (boxes.baseAddress! + index).initialize(to: box)
             guard !box.isEmpty else { continue }
             area += box.area
@@ -131,10 +234,9 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
       }
       initialized = count
     }
-    coveredPixels = covered.reduce(0, +)
-    guard Double(coveredPixels) <= Double(overlapLimit) * Double(width * height)
-    else { return nil }
-    // Tile by tile, part 0's entries before part 1's: scene order.
+    let area = covered.reduce(0, +)
+    guard Double(area) <= areaLimit else { return nil }
+    // Tile by tile, part 0's entries before part 1's: the primitives' order.
     var starts = [Int](repeating: 0, count: tileCount + 1)
     var cursors = [[Int]](
       repeating: [Int](repeating: 0, count: tileCount), count: parts)
@@ -147,25 +249,24 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
       }
     }
     starts[tileCount] = total
-    // Entries are mostly one or two per sphere and one per 1,024 pixels
+    // Entries are mostly one or two per primitive and one per 1,024 pixels
     // of a big box; thin boxes spanning many tiles could make them far
-    // more, each a copy of a record. Past two per pixel and sphere the
-    // memory would outgrow the render's own buffers: the hierarchy then.
+    // more.
     guard total <= 2 * (width * height + count) else { return nil }
     self.starts = starts
     entries = Array(unsafeUninitializedCapacity: total) {
       entries, initialized in
       Memory.adviseHugePages(UnsafeMutableRawBufferPointer(entries))
-      let shared = Shared((entries, cursors))
-      boxes.withUnsafeBufferPointer { boxes in
-        scene.spheres.withUnsafeBufferPointer { records in
-          let boxesAndRecords = Shared((boxes, records))
+      withoutActuallyEscaping(entry) { entry in
+        let (shared, sharedEntry) = (Shared((entries, cursors)), Shared(entry))
+        boxes.withUnsafeBufferPointer { boxes in
+          let boxes = Shared(boxes)
           Parallel.inParts(count, parts) { part, range in
             let (entries, cursors) = shared.value
-            let (boxes, records) = boxesAndRecords.value
+            let entry = sharedEntry.value
             var cursor = cursors[part]
             for index in range {
-              let box = boxes[index]
+              let box = boxes.value[index]
               guard !box.isEmpty else { continue }
               let (columns, rows) = (box.columns, box.rows)
               for tileRow in rows.lowerBound / tileHeight...rows.upperBound
@@ -182,15 +283,14 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
                   let left = tileColumn * tileWidth
                   let tile = tileRow * tilesAcross + tileColumn
                   (entries.baseAddress! + cursor[tile]).initialize(
-                    to: Entry(
-                      record: records[index],
-                      sphere: Int32(truncatingIfNeeded: index),
-                      firstColumn: UInt16(
-                        Swift.max(columns.lowerBound, left) - left),
-                      lastColumn: UInt16(
-                        Swift.min(columns.upperBound, left + tileWidth - 1)
-                          - left),
-                      firstRow: rowsInTile.0, lastRow: rowsInTile.1))
+                    to: entry(
+                      index,
+                      (
+                        UInt16(Swift.max(columns.lowerBound, left) - left),
+                        UInt16(
+                          Swift.min(columns.upperBound, left + tileWidth - 1)
+                            - left)
+                      ), rowsInTile))
                   cursor[tile] += 1
                 }
               }
@@ -200,5 +300,11 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
       }
       initialized = total
     }
+    return area
   }
+}
+
+/// The tiles' width, shared by every kernel's `ScreenTiles`.
+enum ScreenTilesGeometry {
+  static var tileWidth: Int { 256 }
 }
