@@ -54,7 +54,10 @@ extension CompiledScene {
   /// triangle: those passing within the ball about each corner that holds
   /// its hierarchy box's padding (√3 times the pad, taken as 2), plus the
   /// rounding of a pixel's ray as for spheres (`cullBound`: 64 ε of the
-  /// render's precision times the distance).
+  /// render's precision times the distance). The pixel box's own pad for
+  /// rounded screen coordinates already held every hit in the tests
+  /// (`TriangleTilesTests`, triangles grazing pixels' rays at a corner);
+  /// this reach keeps the argument from resting on that.
   func triangleBox(
     _ record: TriangleRecord<Scalar>, _ projection: ScreenProjection,
     margin: Double

@@ -252,7 +252,8 @@ extension Renderer {
             scene.testPlanes(ray, &search)
             (searches.baseAddress! + slot).initialize(to: search)
             (prepared.baseAddress! + slot).initialize(
-              to: WatertightRay(Ray(origin: ray.origin, direction: ray.direction)))
+              to: WatertightRay(
+                Ray(origin: ray.origin, direction: ray.direction)))
           }
         }
         // The large triangles (`TrianglePlane`) come after the ordinary

@@ -85,7 +85,8 @@ struct ScreenProjection: Sendable {
     /// anything not finite.
     case unbounded
     /// Screen x and y intervals, padded for this arithmetic's rounding.
-    case within(x: (lower: Double, upper: Double), y: (lower: Double, upper: Double))
+    case within(
+      x: (lower: Double, upper: Double), y: (lower: Double, upper: Double))
   }
 
   /// The screen extent of the rays that may pass within `reach` of
@@ -142,14 +143,20 @@ struct ScreenProjection: Sendable {
     switch extents {
     case (.behind, .behind, .behind):
       return .empty
-    case (.within(let x0, let y0), .within(let x1, let y1),
-      .within(let x2, let y2)):
+    case (
+      .within(let x0, let y0), .within(let x1, let y1),
+      .within(let x2, let y2)
+    ):
       return pixelBox(
         .within(
-          x: (Swift.min(x0.lower, x1.lower, x2.lower),
-              Swift.max(x0.upper, x1.upper, x2.upper)),
-          y: (Swift.min(y0.lower, y1.lower, y2.lower),
-              Swift.max(y0.upper, y1.upper, y2.upper))),
+          x: (
+            Swift.min(x0.lower, x1.lower, x2.lower),
+            Swift.max(x0.upper, x1.upper, x2.upper)
+          ),
+          y: (
+            Swift.min(y0.lower, y1.lower, y2.lower),
+            Swift.max(y0.upper, y1.upper, y2.upper)
+          )),
         margin: margin)
     default:
       return whole

@@ -20,8 +20,9 @@ final class ScreenTilesTests: XCTestCase {
     let compiled = CompiledScene<Kernel>(
       scene, hierarchyThreshold: search == .hierarchy ? 0 : .max,
       projectionThreshold: search == .screenTiles ? 0 : .max)
-    return Renderer.renderReportingSearch(
+    let rendered = Renderer.renderReportingSearch(
       compiled, settings: settings, overlapLimit: overlapLimit)
+    return (rendered.buffers, rendered.search)
   }
 
   /// The number of pixels where the two renders differ in any output.
