@@ -149,6 +149,25 @@ public enum PNGEncoder {
     into out: UnsafeMutableBufferPointer<UInt8>
   ) {
     let bytesPerPixel = 3
+    // The filters the encoder uses by default, each in a loop of its own
+    // that the compiler vectorises: the general loop below, one switch per
+    // byte, took a tenth of a course render's whole run.
+    switch (filter, previous) {
+    case (.none, _), (.up, nil):
+      out.baseAddress!.update(from: row.baseAddress!, count: row.count)
+      return
+    case (.up, let previous?):
+      for i in 0..<row.count { out[i] = row[i] &- previous[i] }
+      return
+    case (.sub, _):
+      for i in 0..<Swift.min(bytesPerPixel, row.count) { out[i] = row[i] }
+      for i in Swift.min(bytesPerPixel, row.count)..<row.count {
+        out[i] = row[i] &- row[i - bytesPerPixel]
+      }
+      return
+    default:
+      break
+    }
     for i in 0..<row.count {
       let left = i >= bytesPerPixel ? row[i - bytesPerPixel] : 0
       let above = previous?[i] ?? 0

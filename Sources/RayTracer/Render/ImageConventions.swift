@@ -56,36 +56,58 @@ extension ImageStyle {
 
   /// Course: |n| per component, misses black. Mit: (n + 1)/2, misses grey.
   public func normalImage<S: RayScalar>(_ buffers: RenderBuffers<S>) -> Image8 {
+    if !buffers.normalBytes.isEmpty {
+      return Image8(
+        width: buffers.width, height: buffers.height,
+        bytes: buffers.normalBytes)
+    }
     var bytes = [UInt8](repeating: 0, count: buffers.normals.count * 3)
     for (pixel, normal) in buffers.normals.enumerated() {
-      let mapped: Vector3<S>
-      switch self {
-      case .course:
-        mapped = Vector3(
-          normal.x.magnitude, normal.y.magnitude, normal.z.magnitude)
-      case .mit:
-        mapped = (normal + Vector3(1, 1, 1)) * S(0.5)
-      }
-      store(mapped, at: pixel, in: &bytes)
+      store(self.pixel(normal: normal), at: pixel, in: &bytes)
     }
     return Image8(width: buffers.width, height: buffers.height, bytes: bytes)
   }
 
   /// The shaded colour clamped to [0, 1].
   public func colorImage<S: RayScalar>(_ buffers: RenderBuffers<S>) -> Image8 {
+    if !buffers.colorBytes.isEmpty {
+      return Image8(
+        width: buffers.width, height: buffers.height, bytes: buffers.colorBytes)
+    }
     var bytes = [UInt8](repeating: 0, count: buffers.color.count * 3)
     for (pixel, color) in buffers.color.enumerated() {
-      store(color, at: pixel, in: &bytes)
+      store(self.pixel(color), at: pixel, in: &bytes)
     }
     return Image8(width: buffers.width, height: buffers.height, bytes: bytes)
   }
 
-  private func store<S: RayScalar>(
-    _ value: Vector3<S>, at pixel: Int, in bytes: inout [UInt8]
+  /// A normal's pixel: |n| per component (course) or (n + 1)/2 (mit),
+  /// quantized.
+  @inlinable
+  public func pixel<S: RayScalar>(normal: Vector3<S>) -> (UInt8, UInt8, UInt8)
+  {
+    switch self {
+    case .course:
+      pixel(
+        Vector3(normal.x.magnitude, normal.y.magnitude, normal.z.magnitude))
+    case .mit:
+      pixel((normal + Vector3(1, 1, 1)) * S(0.5))
+    }
+  }
+
+  /// A colour's pixel: each component quantized.
+  @inlinable
+  public func pixel<S: RayScalar>(_ value: Vector3<S>) -> (UInt8, UInt8, UInt8)
+  {
+    (quantize(value.x), quantize(value.y), quantize(value.z))
+  }
+
+  private func store(
+    _ value: (UInt8, UInt8, UInt8), at pixel: Int, in bytes: inout [UInt8]
   ) {
-    bytes[3 * pixel] = quantize(value.x)
-    bytes[3 * pixel + 1] = quantize(value.y)
-    bytes[3 * pixel + 2] = quantize(value.z)
+    bytes[3 * pixel] = value.0
+    bytes[3 * pixel + 1] = value.1
+    bytes[3 * pixel + 2] = value.2
   }
 
   /// [0, 1] to 0...255: truncation in the course style (its `UInt8(v·255)`),

@@ -9,6 +9,12 @@ public struct RenderBuffers<Scalar: RayScalar>: Sendable {
   public var normals: [Vector3<Scalar>]
   /// Linear colour before clamping; the background where nothing was hit.
   public var color: [RGB<Scalar>]
+  /// The normals and colours already as the style's 8-bit pixels (three
+  /// bytes each, `ImageStyle.pixel`), for outputs the render was told are
+  /// only written as 8-bit images (`RenderSettings.quantizedOutputs`);
+  /// `normals` and `color` are then empty.
+  public var normalBytes: [UInt8] = []
+  public var colorBytes: [UInt8] = []
 
   public init(
     width: Int, height: Int, depth: [Scalar] = [],

@@ -84,6 +84,13 @@ public enum RenderJob {
   ) throws -> RenderReport {
     var settings = requested
     settings.outputs = files.reduce(into: []) { $0.formUnion($1.kind) }
+    // Normals and colours that only 8-bit files show are rendered straight
+    // into their pixels: no buffer of the render's precision for them.
+    // (Depth keeps its values: its image's range comes from all of them.)
+    settings.quantizedOutputs = [.normals, .shaded].filter { kind in
+      files.contains { $0.kind == kind }
+        && files.allSatisfy { $0.kind != kind || $0.format.isEightBit }
+    }.reduce(into: []) { $0.formUnion($1) }
     let textures =
       settings.outputs.contains(.shaded)
       ? try given ?? TextureLoader.load(for: scene) : []

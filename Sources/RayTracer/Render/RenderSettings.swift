@@ -47,6 +47,11 @@ public struct RenderSettings: Sendable {
   public var samples: Int = 1
   /// How samples are spread over and weighted around a pixel.
   public var filter: PixelFilter = .box
+  /// Outputs (normals, shaded) that are only written as 8-bit images: the
+  /// render stores them straight as the style's pixels
+  /// (`RenderBuffers.normalBytes`, `colorBytes`), three bytes a pixel
+  /// instead of three numbers of the render's precision.
+  public var quantizedOutputs: RenderOutputs = []
   /// Renders of the same image after the first, in the same process: the
   /// render time reported is then their median, a warm render as peers
   /// that time repeated renders report it (`raytrace bench`). The files

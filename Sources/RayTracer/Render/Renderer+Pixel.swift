@@ -11,13 +11,13 @@ extension Renderer {
     settings: RenderSettings, targets: Targets<Kernel.Scalar>,
     sphereRecord: Kernel.SphereRecord? = nil
   ) {
-    let wantsDepth = targets.depth.count > 0
-    let wantsNormals = targets.normals.count > 0
-    let shadeCentre = targets.color.count > 0 && settings.samples == 1
+    let wantsDepth = targets.wantsDepth
+    let wantsNormals = targets.wantsNormals
+    let shadeCentre = targets.wantsColor && settings.samples == 1
     guard let hit else {
       if wantsDepth { targets.depth[pixel] = .infinity }
-      if wantsNormals { targets.normals[pixel] = .zero }
-      if shadeCentre { targets.color[pixel] = scene.background }
+      if wantsNormals { targets.setNormal(.zero, at: pixel) }
+      if shadeCentre { targets.setColor(scene.background, at: pixel) }
       return
     }
     if wantsDepth { targets.depth[pixel] = hit.t * scene.lengthScale }
@@ -28,11 +28,12 @@ extension Renderer {
     } else {
       normal = scene.normal(of: hit.what, ray, t: hit.t)
     }
-    if wantsNormals { targets.normals[pixel] = normal }
+    if wantsNormals { targets.setNormal(normal, at: pixel) }
     if shadeCentre {
-      targets.color[pixel] = shade(
-        hit, ray: ray, normal: normal, scene: scene,
-        attenuate: settings.style == .mit)
+      targets.setColor(
+        shade(
+          hit, ray: ray, normal: normal, scene: scene,
+          attenuate: settings.style == .mit), at: pixel)
     }
   }
 

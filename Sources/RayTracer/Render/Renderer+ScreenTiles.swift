@@ -182,8 +182,9 @@ extension Renderer {
               }
               for row in rows {
                 for column in tileColumns {
-                  targets.color[row * settings.width + column] =
-                    sums[slot(row, column)] / S(count)
+                  targets.setColor(
+                    sums[slot(row, column)] / S(count),
+                    at: row * settings.width + column)
                 }
               }
             }

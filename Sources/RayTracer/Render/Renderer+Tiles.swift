@@ -21,14 +21,13 @@ extension Renderer {
         let triangleEntries = tiles.triangleEntries(
           ofTileAt: start, row: rows.lowerBound)
         let tile = start..<min(start + width, settings.width)
-        if settings.samples == 1 || targets.depth.count > 0
-          || targets.normals.count > 0
+        if settings.samples == 1 || targets.wantsDepth || targets.wantsNormals
         {
           renderProjectedTile(
             entries, triangleEntries, columns: tile, rows: rows, columns,
             scene, camera, settings, targets)
         }
-        if settings.samples > 1 && targets.color.count > 0 {
+        if settings.samples > 1 && targets.wantsColor {
           renderProjectedSamples(
             entries, triangleEntries, columns: tile, rows: rows, scene, camera,
             settings, targets)
@@ -124,7 +123,7 @@ extension Renderer {
     let aspect = R(settings.height) / R(width)
     let y: R = style.screenY(row: row, height: settings.height)
     let rowBase = camera.rowBase(y: y, aspect: aspect)
-    let wantsColor = targets.color.count > 0
+    let wantsColor = targets.wantsColor
     // The tile's directions first, in a loop without calls, so that the
     // processor overlaps one pixel's square root and division with the
     // next one's instead of waiting on each behind a traversal. At most
@@ -142,9 +141,10 @@ extension Renderer {
         let ray = CameraRay(origin: scene.rayOrigin, direction: direction)
         let pixel = row * width + column
         if wantsColor && settings.samples > 1 {
-          targets.color[pixel] = supersampledColor(
-            column: column, row: row, by: search, scene: scene,
-            camera: camera, settings: settings)
+          targets.setColor(
+            supersampledColor(
+              column: column, row: row, by: search, scene: scene,
+              camera: camera, settings: settings), at: pixel)
         }
         let hit = scene.nearest(ray, by: search)
         store(

@@ -117,19 +117,36 @@ public enum Renderer {
     // Left uninitialised: every pixel of every requested buffer is written
     // exactly once below, so zeroing them first would only cost a pass
     // over memory on one thread.
+    // Outputs written only as 8-bit images are stored as their pixels.
+    func counts(_ output: RenderOutputs) -> (values: Int, bytes: Int) {
+      guard outputs.contains(output) else { return (0, 0) }
+      return settings.quantizedOutputs.contains(output)
+        ? (0, 3 * count) : (count, 0)
+    }
     var normals: [Vector3<S>] = []
     var color: [RGB<S>] = []
+    var normalBytes: [UInt8] = []
+    var colorBytes: [UInt8] = []
     let depth = uninitializedArray(
       of: S.self, count: outputs.contains(.depth) ? count : 0
     ) {
       depth in
       normals = uninitializedArray(
-        of: Vector3<S>.self, count: outputs.contains(.normals) ? count : 0
+        of: Vector3<S>.self, count: counts(.normals).values
       ) { normals in
         color = uninitializedArray(
-          of: RGB<S>.self, count: outputs.contains(.shaded) ? count : 0
+          of: RGB<S>.self, count: counts(.shaded).values
         ) { color in
-          let targets = Targets(depth: depth, normals: normals, color: color)
+         normalBytes = uninitializedArray(
+          of: UInt8.self, count: counts(.normals).bytes
+         ) { normalBytes in
+          colorBytes = uninitializedArray(
+            of: UInt8.self, count: counts(.shaded).bytes
+          ) { colorBytes in
+          let targets = Targets(
+            depth: depth, normals: normals, color: color,
+            normalBytes: normalBytes, colorBytes: colorBytes,
+            style: settings.style)
           // Screen x per column, once per render rather than a division
           // per pixel.
           let columns = (0..<width).map { column -> RayPrecision in
@@ -144,12 +161,17 @@ public enum Renderer {
                 rows, columns.value, scene, camera, settings, tiles, targets)
             }
           }
+          }
+         }
         }
       }
     }
-    return RenderBuffers(
+    var buffers = RenderBuffers(
       width: width, height: height, depth: depth, normals: normals, color: color
     )
+    buffers.normalBytes = normalBytes
+    buffers.colorBytes = colorBytes
+    return buffers
   }
 
   /// An array of `count` elements that `initialize` must write, every one.
@@ -165,9 +187,46 @@ public enum Renderer {
   }
 
   /// Disjoint rows of these buffers are written by different threads.
+  /// Normals and colours go to their values or, for outputs only written
+  /// as 8-bit images, to the style's pixels.
   struct Targets<S: RayScalar>: @unchecked Sendable {
     let depth: UnsafeMutableBufferPointer<S>
     let normals: UnsafeMutableBufferPointer<Vector3<S>>
     let color: UnsafeMutableBufferPointer<RGB<S>>
+    let normalBytes: UnsafeMutableBufferPointer<UInt8>
+    let colorBytes: UnsafeMutableBufferPointer<UInt8>
+    let style: ImageStyle
+
+    var wantsDepth: Bool { depth.count > 0 }
+    var wantsNormals: Bool { normals.count > 0 || normalBytes.count > 0 }
+    var wantsColor: Bool { color.count > 0 || colorBytes.count > 0 }
+
+    @inline(__always)
+    func setNormal(_ normal: Vector3<S>, at pixel: Int) {
+      if normals.count > 0 {
+        normals[pixel] = normal
+      } else {
+        Self.store(style.pixel(normal: normal), at: pixel, in: normalBytes)
+      }
+    }
+
+    @inline(__always)
+    func setColor(_ value: RGB<S>, at pixel: Int) {
+      if color.count > 0 {
+        color[pixel] = value
+      } else {
+        Self.store(style.pixel(value), at: pixel, in: colorBytes)
+      }
+    }
+
+    @inline(__always)
+    private static func store(
+      _ value: (UInt8, UInt8, UInt8), at pixel: Int,
+      in bytes: UnsafeMutableBufferPointer<UInt8>
+    ) {
+      bytes[3 * pixel] = value.0
+      bytes[3 * pixel + 1] = value.1
+      bytes[3 * pixel + 2] = value.2
+    }
   }
 }
