@@ -40,4 +40,37 @@ final class ImageConventionsTests: XCTestCase {
       (0..<4).map { image.bytes[3 * $0] }, [0, 128, 255, 255],
       "near black, 127.5 rounds up, far and beyond white")
   }
+
+  /// Normals and colours rendered straight into 8-bit pixels
+  /// (`RenderSettings.quantizedOutputs`) are the images made from the
+  /// values, byte for byte: every project scene, both styles, one sample
+  /// and supersampled, spheres through screen tiles and triangles too.
+  func testQuantizedOutputs_SameImagesAsFromValues() throws {
+    for path in try CourseEngineTests.projectScenes() {
+      for style in ImageStyle.allCases {
+        let scene = try SceneReader.read(
+          contentsOf: path, options: SceneOptions(style: style))
+        for samples in [1, 4] {
+          var settings = RenderSettings(
+            width: 23, height: 17, outputs: [.depth, .normals, .shaded],
+            style: style, threads: 2)
+          settings.samples = samples
+          let compiled = CompiledScene<StableKernel<Double>>(
+            scene, projectionThreshold: 0, triangleProjectionThreshold: 0)
+          let values = Renderer.render(compiled, settings: settings)
+          settings.quantizedOutputs = [.normals, .shaded]
+          let pixels = Renderer.render(compiled, settings: settings)
+          XCTAssertTrue(pixels.normals.isEmpty && pixels.color.isEmpty)
+          XCTAssertEqual(pixels.depth, values.depth)
+          let label = "\(path) \(style) \(samples) samples"
+          XCTAssertEqual(
+            style.normalImage(pixels).bytes, style.normalImage(values).bytes,
+            label)
+          XCTAssertEqual(
+            style.colorImage(pixels).bytes, style.colorImage(values).bytes,
+            label)
+        }
+      }
+    }
+  }
 }
