@@ -11,12 +11,12 @@ struct Bench: ParsableCommand {
       --runs timed runs, then one run that renders twice --runs more times \
       (--repeat). 'render, warm' is the median of those repeated renders \
       (rendering only, as peers that time repeated renders in one process \
-      report it) and Mrays/s its throughput; 'render, first' the median of \
+      report it) and Mrays/s its throughput, every sample counted; 'render, first' the median of \
       the timed runs' only render, cold caches and fresh buffers included; \
       'end to end' the median wall time of the timed runs (parse, build, \
       render, write PNGs); 'peak memory' their largest resident set. The \
-      random scenes are written to --data on first use; run from the \
-      project's root.
+      random sphere and mesh scenes are written to --data on first use; run \
+      from the project's root.
       """)
 
   @Option(help: "Timed runs per workload, after one warm-up.")
@@ -27,7 +27,10 @@ struct Bench: ParsableCommand {
       "Folder for generated scenes and images.", valueName: "dir"))
   var data: String = ".build/bench"
 
-  @Flag(help: "Skip the 1,000,000-sphere and 3840x2160 workloads.")
+  @Flag(
+    help:
+      "Skip the 1,000,000-sphere, 1,000,000-triangle and 3840x2160 workloads."
+  )
   var quick = false
 
   mutating func validate() throws {
@@ -39,10 +42,11 @@ struct Bench: ParsableCommand {
     let benchmark = Benchmark(
       executable: currentExecutable(), dataFolder: data, runs: runs)
     print(
-      "| workload | size | objects | threads | outputs | render, warm (ms) | "
-        + "Mrays/s | render, first (ms) | end to end (s) | peak memory (MiB) |"
+      "| workload | size | objects | threads | outputs | samples | "
+        + "render, warm (ms) | Mrays/s | render, first (ms) | end to end (s) | "
+        + "peak memory (MiB) |"
     )
-    print("|---|---|---:|---:|---|---:|---:|---:|---:|---:|")
+    print("|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|")
     var endToEnd: [Int: Double] = [:]
     for workload in Workload.standard {
       if quick
@@ -58,6 +62,7 @@ struct Bench: ParsableCommand {
             + "\(workload.objectsDescription) | "
             + "\(result.threads) | "
             + "\(workload.outputs.names.joined(separator: " + ")) | "
+            + "\(workload.samples) | "
             + "\(formatted(result.warmRenderSeconds * 1000, digits: 3)) | "
             + "\(formatted(result.megaraysPerSecond, digits: 3)) | "
             + "\(formatted(result.renderSeconds * 1000, digits: 3)) | "

@@ -6,6 +6,9 @@ public struct Workload: Sendable {
     /// `RandomSpheres` with this many spheres, written once to the data
     /// folder.
     case randomSpheres(Int)
+    /// `RandomMesh` with this many triangles, written once to the data
+    /// folder.
+    case randomMesh(Int)
   }
 
   public var name: String
@@ -15,6 +18,8 @@ public struct Workload: Sendable {
   /// Nil: all cores.
   public var threads: Int?
   public var outputs: RenderOutputs
+  /// Rays per pixel of the shaded image (`--samples`).
+  public var samples = 1
 
   /// The workloads of the README's table: the course-like scene at two
   /// sizes, random spheres from 100 to 10⁶, what leaving outputs out saves,
@@ -50,11 +55,29 @@ public struct Workload: Sendable {
     Workload(
       name: "random spheres", source: .randomSpheres(1_000_000), width: 1920,
       height: 1080, outputs: [.depth, .normals]),
+    Workload(
+      name: "course scene", source: .file("scenes/spheres.txt"), width: 800,
+      height: 800, outputs: [.shaded], samples: 16),
+    Workload(
+      name: "random spheres", source: .randomSpheres(10_000), width: 1920,
+      height: 1080, outputs: [.shaded], samples: 16),
+    Workload(
+      name: "mesh", source: .randomMesh(1_000), width: 1920, height: 1080,
+      outputs: [.depth, .normals]),
+    Workload(
+      name: "mesh", source: .randomMesh(1_000), width: 1920, height: 1080,
+      outputs: [.shaded], samples: 16),
+    Workload(
+      name: "mesh", source: .randomMesh(100_000), width: 1920, height: 1080,
+      outputs: [.depth, .normals]),
+    Workload(
+      name: "mesh", source: .randomMesh(1_000_000), width: 1920, height: 1080,
+      outputs: [.depth, .normals]),
   ]
 
   public init(
     name: String, source: Source, width: Int, height: Int, threads: Int? = nil,
-    outputs: RenderOutputs
+    outputs: RenderOutputs, samples: Int = 1
   ) {
     self.name = name
     self.source = source
@@ -62,12 +85,13 @@ public struct Workload: Sendable {
     self.height = height
     self.threads = threads
     self.outputs = outputs
+    self.samples = samples
   }
 
   public var objectsDescription: String {
     switch source {
     case .file: "7"
-    case .randomSpheres(let count): "\(count)"
+    case .randomSpheres(let count), .randomMesh(let count): "\(count)"
     }
   }
 }
@@ -89,9 +113,10 @@ public struct BenchmarkResult: Sendable {
   /// The largest resident set of any run, in bytes.
   public var peakBytes: Int
 
-  /// Camera rays per second of the warm render.
+  /// Camera rays per second of the warm render, every sample counted.
   public var megaraysPerSecond: Double {
-    Double(workload.width * workload.height) / warmRenderSeconds / 1e6
+    Double(workload.width * workload.height * workload.samples)
+      / warmRenderSeconds / 1e6
   }
 }
 
@@ -131,6 +156,22 @@ public struct Benchmark {
         }
       }
       return path
+    case .randomMesh(let count):
+      let (name, path) = ("mesh-\(count)", "\(dataFolder)/mesh-\(count).txt")
+      if access(path, R_OK) != 0 {
+        mkdir(dataFolder, 0o755)
+        do {
+          try AtomicFile.write(
+            Array(RandomMesh.objText(count: count).utf8),
+            to: "\(dataFolder)/\(name).obj")
+          try AtomicFile.write(
+            Array(RandomMesh.sceneText(objName: "\(name).obj").utf8), to: path)
+        } catch {
+          throw Failure(
+            description: "cannot write the benchmark scene: \(error)")
+        }
+      }
+      return path
     }
   }
 
@@ -143,6 +184,9 @@ public struct Benchmark {
       scene, "--size", "\(workload.width)", "\(workload.height)",
       "--threads", "\(threads)", "--stats",
     ]
+    if workload.samples > 1 {
+      arguments += ["--samples", "\(workload.samples)"]
+    }
     let outputFolder = dataFolder + "/out"
     mkdir(dataFolder, 0o755)
     mkdir(outputFolder, 0o755)
