@@ -45,15 +45,25 @@ public enum TrianglePlane {
       }
       k = Compensated.sum(terms)
     } else {
-      // n is exact in the scene's precision, no narrower than S.
-      var terms: [Input] = []
-      for (component, d) in [(n.x, dx), (n.y, dy), (n.z, dz)] {
-        let high = Compensated.twoProduct(Input(component), d.sum)
-        let low = Compensated.twoProduct(Input(component), d.error)
-        terms += [high.product, high.error, low.product, low.error]
-      }
-      k = terms.withUnsafeMutableBufferPointer {
-        CameraRelative.roundedSum($0)
+      // n is exact in the scene's precision, no narrower than S. The twelve
+      // terms on the stack: an array per triangle was most of the compile
+      // of a million-triangle mesh's own work.
+      k = withUnsafeTemporaryAllocation(of: Input.self, capacity: 12) {
+        terms in
+        var count = 0
+        func append(_ component: S, _ d: (sum: Input, error: Input)) {
+          let high = Compensated.twoProduct(Input(component), d.sum)
+          let low = Compensated.twoProduct(Input(component), d.error)
+          terms.initializeElement(at: count, to: high.product)
+          terms.initializeElement(at: count + 1, to: high.error)
+          terms.initializeElement(at: count + 2, to: low.product)
+          terms.initializeElement(at: count + 3, to: low.error)
+          count += 4
+        }
+        append(n.x, dx)
+        append(n.y, dy)
+        append(n.z, dz)
+        return CameraRelative.roundedSum(terms)
       }
     }
     let extent = Swift.max(
