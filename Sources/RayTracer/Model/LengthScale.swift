@@ -94,6 +94,9 @@ public enum LengthScale {
   public static func problem(_ scene: Scene, precision: Precision)
     -> String?
   {
+    // Only spheres can have the problem: a mesh-only scene is not
+    // flattened a second time here (it is when compiled).
+    guard containsSphere(.group(scene.root)) else { return nil }
     let all = scene.root.flattened()
     let eye = scene.camera.center
     let exponent =
@@ -113,6 +116,16 @@ public enum LengthScale {
         + (precision == .float ? "; use --precision double" : "")
     }
     return nil
+  }
+
+  /// Whether a sphere is anywhere in `object`, transformed or not.
+  static func containsSphere(_ object: SceneObject<Double>) -> Bool {
+    switch object {
+    case .sphere: true
+    case .plane, .triangle: false
+    case .group(let group): group.objects.contains { containsSphere($0) }
+    case .transform(let transform): containsSphere(transform.object)
+    }
   }
 
   /// 2^k as a Double (k within Double's exponent range).
