@@ -253,3 +253,23 @@ func wordRanges(_ bytes: [UInt8]) -> [Range<Int>] {
   if let begun = start { ranges.append(begun..<bytes.count) }
   return ranges
 }
+
+// MARK: - Renders
+
+/// The number of pixels where two renders of one size differ in any
+/// output, bit for bit.
+func differences<S: RayScalar>(_ a: RenderBuffers<S>, _ b: RenderBuffers<S>)
+  -> Int
+{
+  var count = 0
+  for pixel in 0..<(a.width * a.height) {
+    var same = true
+    if !a.depth.isEmpty { same = same && a.depth[pixel] == b.depth[pixel] }
+    if !a.normals.isEmpty {
+      same = same && a.normals[pixel] == b.normals[pixel]
+    }
+    if !a.color.isEmpty { same = same && a.color[pixel] == b.color[pixel] }
+    if !same { count += 1 }
+  }
+  return count
+}

@@ -25,23 +25,6 @@ final class ScreenTilesTests: XCTestCase {
     return (rendered.buffers, rendered.search)
   }
 
-  /// The number of pixels where the two renders differ in any output.
-  func differences<S: RayScalar>(_ a: RenderBuffers<S>, _ b: RenderBuffers<S>)
-    -> Int
-  {
-    var count = 0
-    for pixel in 0..<(a.width * a.height) {
-      var same = true
-      if !a.depth.isEmpty { same = same && a.depth[pixel] == b.depth[pixel] }
-      if !a.normals.isEmpty {
-        same = same && a.normals[pixel] == b.normals[pixel]
-      }
-      if !a.color.isEmpty { same = same && a.color[pixel] == b.color[pixel] }
-      if !same { count += 1 }
-    }
-    return count
-  }
-
   /// Projection and the BVH (and, for few spheres, culling) agree on every
   /// pixel of `scene`.
   func assertSameImages<Kernel: IntersectionKernel>(

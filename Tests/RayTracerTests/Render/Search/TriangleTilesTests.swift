@@ -145,22 +145,6 @@ final class TriangleTilesTests: XCTestCase {
       root: Group(objects))
   }
 
-  func differences<S: RayScalar>(_ a: RenderBuffers<S>, _ b: RenderBuffers<S>)
-    -> Int
-  {
-    var count = 0
-    for pixel in 0..<(a.width * a.height) {
-      var same = true
-      if !a.depth.isEmpty { same = same && a.depth[pixel] == b.depth[pixel] }
-      if !a.normals.isEmpty {
-        same = same && a.normals[pixel] == b.normals[pixel]
-      }
-      if !a.color.isEmpty { same = same && a.color[pixel] == b.color[pixel] }
-      if !same { count += 1 }
-    }
-    return count
-  }
-
   func checkRandomScenes<Kernel: IntersectionKernel>(
     _ kernel: Kernel.Type, base: UInt64
   ) {
