@@ -4,7 +4,8 @@
 // Every input must either parse or throw one well-formed `SceneError`; a
 // scene that parses must compile and render a 4x3 image with both kernels
 // without trapping (the Float kernel only when the scene reads in float, as
-// the command line requires). Anything else stops the fuzzer with the input
+// the command line requires, and with every sphere and triangle projected
+// onto screen tiles; the Double one through the hierarchies). Anything else stops the fuzzer with the input
 // saved.
 //
 // Checked always (invariants that hold by construction, so a failure is a
@@ -70,7 +71,7 @@ public func fuzzSceneParser(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt
   }
   render(
     floatScene, NaiveKernel<Float>.self, style: .mit,
-    hierarchyThreshold: nil, strict: strict)
+    hierarchyThreshold: nil, projected: true, strict: strict)
   return 0
 }
 
@@ -257,10 +258,16 @@ func isModest(_ scene: Scene) -> Bool {
 
 func render<Kernel: IntersectionKernel>(
   _ scene: Scene, _ kernel: Kernel.Type, style: ImageStyle,
-  hierarchyThreshold: Int?, strict: Bool
+  hierarchyThreshold: Int?, projected: Bool = false, strict: Bool
 ) {
+  // Projected: every sphere and triangle through screen tiles, as large
+  // scenes are rendered (the tiles decline, and hierarchies are built,
+  // where they overlap too much).
   let compiled =
-    hierarchyThreshold.map {
+    projected
+    ? CompiledScene<Kernel>(
+      scene, projectionThreshold: 0, triangleProjectionThreshold: 0)
+    : hierarchyThreshold.map {
       CompiledScene<Kernel>(scene, hierarchyThreshold: $0)
     }
     ?? CompiledScene<Kernel>(scene)
