@@ -87,10 +87,10 @@ public enum RenderJob {
     // Normals and colours that only 8-bit files show are rendered straight
     // into their pixels: no buffer of the render's precision for them.
     // (Depth keeps its values: its image's range comes from all of them.)
-    settings.quantizedOutputs = [.normals, .shaded].filter { kind in
-      files.contains { $0.kind == kind }
-        && files.allSatisfy { $0.kind != kind || $0.format.isEightBit }
-    }.reduce(into: []) { $0.formUnion($1) }
+    for kind: RenderOutputs in [.normals, .shaded]
+    where files.allSatisfy({ $0.kind != kind || $0.format.isEightBit }) {
+      settings.quantizedOutputs.insert(kind)
+    }
     let textures =
       settings.outputs.contains(.shaded)
       ? try given ?? TextureLoader.load(for: scene) : []

@@ -22,12 +22,8 @@ extension Renderer {
     }
     if wantsDepth { targets.depth[pixel] = hit.t * scene.lengthScale }
     guard wantsNormals || shadeCentre else { return }
-    let normal: Vector3<Kernel.Scalar>
-    if case .sphere = hit.what, let sphereRecord {
-      normal = Kernel.normal(sphereRecord, ray, t: hit.t)
-    } else {
-      normal = scene.normal(of: hit.what, ray, t: hit.t)
-    }
+    let normal = self.normal(
+      of: hit, ray: ray, scene: scene, sphereRecord: sphereRecord)
     if wantsNormals { targets.setNormal(normal, at: pixel) }
     if shadeCentre {
       targets.setColor(
@@ -35,6 +31,35 @@ extension Renderer {
           hit, ray: ray, normal: normal, scene: scene,
           attenuate: settings.style == .mit), at: pixel)
     }
+  }
+
+  /// The hit's unit normal, from `sphereRecord` (a copy of the record of
+  /// the sphere the search found) when the hit is that sphere.
+  @inline(__always)
+  static func normal<Kernel: IntersectionKernel>(
+    of hit: (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest),
+    ray: CameraRay<Kernel.Scalar>, scene: CompiledScene<Kernel>,
+    sphereRecord: Kernel.SphereRecord?
+  ) -> Vector3<Kernel.Scalar> {
+    if case .sphere = hit.what, let sphereRecord {
+      return Kernel.normal(sphereRecord, ray, t: hit.t)
+    }
+    return scene.normal(of: hit.what, ray, t: hit.t)
+  }
+
+  /// One sample's colour: the background for a miss, else the hit shaded.
+  @inline(__always)
+  static func sampleColor<Kernel: IntersectionKernel>(
+    _ hit: (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest)?,
+    ray: CameraRay<Kernel.Scalar>, scene: CompiledScene<Kernel>,
+    sphereRecord: Kernel.SphereRecord? = nil, attenuate: Bool
+  ) -> RGB<Kernel.Scalar> {
+    guard let hit else { return scene.background }
+    return shade(
+      hit, ray: ray,
+      normal: normal(
+        of: hit, ray: ray, scene: scene, sphereRecord: sphereRecord),
+      scene: scene, attenuate: attenuate)
   }
 
   @inline(__always)
@@ -77,13 +102,8 @@ extension Renderer {
       }
       for direction in directions[0..<count] {
         let ray = CameraRay(origin: scene.rayOrigin, direction: direction)
-        guard let hit = scene.nearest(ray, by: search) else {
-          sum += scene.background
-          continue
-        }
-        let normal = scene.normal(of: hit.what, ray, t: hit.t)
-        sum += shade(
-          hit, ray: ray, normal: normal, scene: scene,
+        sum += sampleColor(
+          scene.nearest(ray, by: search), ray: ray, scene: scene,
           attenuate: settings.style == .mit)
       }
     }

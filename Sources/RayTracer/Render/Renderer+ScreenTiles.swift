@@ -162,22 +162,11 @@ extension Renderer {
                   columns: tileColumns.count, scene: scene, rays: rays,
                   nearestT: nearestT, nearestEntry: nearestEntry
                 ) { slot, hit, entry in
-                  let ray = rays[slot]
-                  guard let hit else {
-                    sums[slot] += scene.background
-                    return
-                  }
                   // A sphere found here is the entry's: only other kinds
                   // are searched after it.
-                  let normal =
-                    if case .sphere = hit.what, let entry {
-                      Kernel.normal(entry.record, ray, t: hit.t)
-                    } else {
-                      scene.normal(of: hit.what, ray, t: hit.t)
-                    }
-                  sums[slot] += shade(
-                    hit, ray: ray, normal: normal, scene: scene,
-                    attenuate: attenuate)
+                  sums[slot] += sampleColor(
+                    hit, ray: rays[slot], scene: scene,
+                    sphereRecord: entry?.record, attenuate: attenuate)
                 }
               }
               for row in rows {

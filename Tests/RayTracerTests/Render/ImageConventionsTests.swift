@@ -73,4 +73,18 @@ final class ImageConventionsTests: XCTestCase {
       }
     }
   }
+
+  /// `PixelFilter.reach`, which widens culling pyramids and screen boxes
+  /// for supersampled rays, bounds every sample's offset and is reached.
+  func testPixelFilterReach_BoundsEveryOffset() {
+    for filter in PixelFilter.allCases {
+      var largest = 0.0
+      for step in 0..<100_000 {
+        let offset = filter.offset(Double(step) / 100_000).magnitude
+        XCTAssertLessThanOrEqual(offset, filter.reach, "\(filter)")
+        largest = Swift.max(largest, offset)
+      }
+      XCTAssertEqual(largest, filter.reach, "\(filter)")
+    }
+  }
 }
