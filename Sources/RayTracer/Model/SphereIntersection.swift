@@ -51,6 +51,38 @@ public enum SphereIntersection {
     offset p: Vector3<S>, c: S, radiusSquared: S,
     after tMin: S, before tMax: S
   ) -> (t: S, entering: Bool)? {
+    var approach: ClosestApproach<S>?
+    return stableRoot(
+      direction: d, lengthSquared: a, inverseLengthSquared: inverseA,
+      offset: p, c: c, radiusSquared: radiusSquared, after: tMin,
+      before: tMax, approach: &approach)
+  }
+
+  /// The centre's offset l from the ray's line and r² − |l|², as
+  /// `stableRoot` computes them on its way to a root of a sphere whose
+  /// discriminant cancels (a small far one): the normal's far form
+  /// (`stableNormal`) needs exactly these values again.
+  public struct ClosestApproach<S: RayScalar>: Sendable {
+    public var offset: Vector3<S>
+    public var gap: S
+
+    @inlinable
+    public init(offset: Vector3<S>, gap: S) {
+      self.offset = offset
+      self.gap = gap
+    }
+  }
+
+  /// `stableRoot`, also setting `approach` to the closest-approach values
+  /// when it computed them (the cancelling case) and to nil otherwise, on
+  /// a hit; on a miss `approach` is unspecified.
+  @inlinable @inline(__always)
+  public static func stableRoot<S: RayScalar>(
+    direction d: Vector3<S>, lengthSquared a: S,
+    inverseLengthSquared inverseA: S,
+    offset p: Vector3<S>, c: S, radiusSquared: S,
+    after tMin: S, before tMax: S, approach: inout ClosestApproach<S>?
+  ) -> (t: S, entering: Bool)? {
     let s = p.dot(d)
     let ac = a * c
     let sSquared = s * s
@@ -65,6 +97,7 @@ public enum SphereIntersection {
     let quarterDiscriminant: S
     if ac <= sSquared * 0.5 {
       quarterDiscriminant = sSquared - ac
+      approach = nil
     } else {
       // Most rays miss most spheres, and a clear miss needs no accurate
       // discriminant: both forms are within a few ε·a·|p|² of the truth
@@ -73,7 +106,9 @@ public enum SphereIntersection {
       let margin = 32 * S.ulpOfOne * a * (c + radiusSquared)
       if sSquared - ac < -margin { return nil }
       let l = p - d * (s * inverseA)
-      quarterDiscriminant = a * (radiusSquared - l.lengthSquared)
+      let gap = radiusSquared - l.lengthSquared
+      quarterDiscriminant = a * gap
+      approach = ClosestApproach(offset: l, gap: gap)
     }
     guard quarterDiscriminant >= 0 else { return nil }
     let root = quarterDiscriminant.squareRoot()
@@ -106,8 +141,22 @@ public enum SphereIntersection {
   ) -> Vector3<S> {
     let s = p.dot(d)
     let l = p - d * (s * inverseA)
-    let along = (Swift.max(radiusSquared - l.lengthSquared, 0) * inverseA)
-      .squareRoot()
+    return stableNormal(
+      direction: d, inverseLengthSquared: inverseA,
+      approach: ClosestApproach(
+        offset: l, gap: radiusSquared - l.lengthSquared),
+      inverseRadius: inverseRadius, entering: entering)
+  }
+
+  /// `stableNormal` from the closest-approach values `stableRoot` found
+  /// (the same bits as computing them again).
+  @inlinable @inline(__always)
+  public static func stableNormal<S: RayScalar>(
+    direction d: Vector3<S>, inverseLengthSquared inverseA: S,
+    approach: ClosestApproach<S>, inverseRadius: S, entering: Bool
+  ) -> Vector3<S> {
+    let l = approach.offset
+    let along = (Swift.max(approach.gap, 0) * inverseA).squareRoot()
     let side: S = entering ? -1 : 1
     let outward = d * (side * along) - l
     let scaled = outward * inverseRadius
@@ -125,12 +174,14 @@ public enum SphereIntersection {
   /// offset t·d − p is used directly: t's relative error ε becomes at most
   /// 64 ε in the normal's direction, and it costs neither the
   /// closest-approach vector nor a square root. Farther spheres, where
-  /// that offset cancels, take `stableNormal`.
+  /// that offset cancels, take `stableNormal`: from `approach` when the
+  /// search kept what `stableRoot` computed for this hit, which saves
+  /// computing the same l and r² − |l|² a second time.
   @inlinable @inline(__always)
   public static func stableNormal<S: RayScalar>(
     direction d: Vector3<S>, inverseLengthSquared inverseA: S, t: S,
     offset p: Vector3<S>, c: S, radiusSquared: S, inverseRadius: S,
-    entering: Bool
+    entering: Bool, approach: ClosestApproach<S>? = nil
   ) -> Vector3<S> {
     if c < 4095 * radiusSquared {
       let scaled = (d * t - p) * inverseRadius
@@ -138,6 +189,11 @@ public enum SphereIntersection {
       if (lengthSquared - 1).magnitude < S.ulpOfOne.squareRoot() {
         return scaled * (1.5 - 0.5 * lengthSquared)
       }
+    }
+    if let approach {
+      return stableNormal(
+        direction: d, inverseLengthSquared: inverseA, approach: approach,
+        inverseRadius: inverseRadius, entering: entering)
     }
     return stableNormal(
       direction: d, inverseLengthSquared: inverseA, offset: p,

@@ -25,6 +25,25 @@ public protocol IntersectionKernel: Sendable {
   static func normal(
     _ record: SphereRecord, _ ray: CameraRay<Scalar>, t: Scalar
   ) -> Vector3<Scalar>
+
+  /// What a sphere test computes on its way to t that the hit's normal
+  /// would compute again (the stable method's closest approach); nothing
+  /// for the naive method. The flat searches keep the nearest hit's.
+  associatedtype SphereHitMemo: Sendable
+  /// The memo before any test: the normal computes everything itself.
+  static var noMemo: SphereHitMemo { get }
+  /// `intersect`, also writing what its normal can reuse into `memo` on a
+  /// hit.
+  static func intersect(
+    _ record: SphereRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar,
+    memo: inout SphereHitMemo
+  ) -> Scalar?
+  /// `normal` from the memo of the test that found t: the same bits.
+  static func normal(
+    _ record: SphereRecord, _ ray: CameraRay<Scalar>, t: Scalar,
+    memo: SphereHitMemo
+  ) -> Vector3<Scalar>
+
   static func intersect(
     _ record: PlaneRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
   ) -> Scalar?
@@ -73,6 +92,23 @@ public enum NaiveKernel<Scalar: RayScalar>: IntersectionKernel {
     SphereIntersection.naiveRoot(
       origin: ray.origin, direction: ray.direction, center: record.center,
       radius: record.radius, after: 0, before: tMax)
+  }
+
+  public static var noMemo: Void { () }
+
+  @inline(__always)
+  public static func intersect(
+    _ record: SphereRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar,
+    memo: inout Void
+  ) -> Scalar? {
+    intersect(record, ray, before: tMax)
+  }
+
+  @inline(__always)
+  public static func normal(
+    _ record: SphereRecord, _ ray: CameraRay<Scalar>, t: Scalar, memo: Void
+  ) -> Vector3<Scalar> {
+    normal(record, ray, t: t)
   }
 
   @inline(__always)
@@ -163,11 +199,24 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
   public static func intersect(
     _ record: SphereRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
   ) -> Scalar? {
+    var memo = noMemo
+    return intersect(record, ray, before: tMax, memo: &memo)
+  }
+
+  public static var noMemo: SphereIntersection.ClosestApproach<Scalar>? {
+    nil
+  }
+
+  @inline(__always)
+  public static func intersect(
+    _ record: SphereRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar,
+    memo: inout SphereIntersection.ClosestApproach<Scalar>?
+  ) -> Scalar? {
     SphereIntersection.stableRoot(
       direction: ray.direction, lengthSquared: ray.lengthSquared,
       inverseLengthSquared: ray.inverseLengthSquared,
       offset: record.offset, c: record.c, radiusSquared: record.radiusSquared,
-      after: 0, before: tMax)?.t
+      after: 0, before: tMax, approach: &memo)?.t
   }
 
   /// Camera rays start at t = 0, so the root hit is the entering one exactly
@@ -177,11 +226,19 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
   public static func normal(
     _ record: SphereRecord, _ ray: CameraRay<Scalar>, t: Scalar
   ) -> Vector3<Scalar> {
+    normal(record, ray, t: t, memo: noMemo)
+  }
+
+  @inline(__always)
+  public static func normal(
+    _ record: SphereRecord, _ ray: CameraRay<Scalar>, t: Scalar,
+    memo: SphereIntersection.ClosestApproach<Scalar>?
+  ) -> Vector3<Scalar> {
     SphereIntersection.stableNormal(
       direction: ray.direction, inverseLengthSquared: ray.inverseLengthSquared,
       t: t, offset: record.offset, c: record.c,
       radiusSquared: record.radiusSquared, inverseRadius: record.inverseRadius,
-      entering: record.c > 0)
+      entering: record.c > 0, approach: memo)
   }
 
   @inline(__always)

@@ -3,13 +3,15 @@
 extension Renderer {
   /// Writes a pixel's requested outputs from its nearest hit (nil: none).
   /// `sphereRecord`, when given, is a copy of the record of the sphere the
-  /// search found, for the normal if that sphere is still the nearest.
+  /// search found, for the normal if that sphere is still the nearest;
+  /// `sphereMemo` what the sphere search kept from that sphere's test.
   @inline(__always)
   static func store<Kernel: IntersectionKernel>(
     _ hit: (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest)?,
     ray: CameraRay<Kernel.Scalar>, pixel: Int, scene: CompiledScene<Kernel>,
     settings: RenderSettings, targets: Targets<Kernel.Scalar>,
-    sphereRecord: Kernel.SphereRecord? = nil
+    sphereRecord: Kernel.SphereRecord? = nil,
+    sphereMemo: Kernel.SphereHitMemo = Kernel.noMemo
   ) {
     let wantsDepth = targets.wantsDepth
     let wantsNormals = targets.wantsNormals
@@ -23,7 +25,8 @@ extension Renderer {
     if wantsDepth { targets.depth[pixel] = hit.t * scene.lengthScale }
     guard wantsNormals || shadeCentre else { return }
     let normal = self.normal(
-      of: hit, ray: ray, scene: scene, sphereRecord: sphereRecord)
+      of: hit, ray: ray, scene: scene, sphereRecord: sphereRecord,
+      sphereMemo: sphereMemo)
     if wantsNormals { targets.setNormal(normal, at: pixel) }
     if shadeCentre {
       targets.setColor(
@@ -34,17 +37,20 @@ extension Renderer {
   }
 
   /// The hit's unit normal, from `sphereRecord` (a copy of the record of
-  /// the sphere the search found) when the hit is that sphere.
+  /// the sphere the search found) when the hit is that sphere, and from
+  /// `sphereMemo`, what the sphere search kept of its nearest hit's test.
   @inline(__always)
   static func normal<Kernel: IntersectionKernel>(
     of hit: (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest),
     ray: CameraRay<Kernel.Scalar>, scene: CompiledScene<Kernel>,
-    sphereRecord: Kernel.SphereRecord?
+    sphereRecord: Kernel.SphereRecord?,
+    sphereMemo: Kernel.SphereHitMemo = Kernel.noMemo
   ) -> Vector3<Kernel.Scalar> {
-    if case .sphere = hit.what, let sphereRecord {
-      return Kernel.normal(sphereRecord, ray, t: hit.t)
+    guard case .sphere(let index) = hit.what else {
+      return scene.normal(of: hit.what, ray, t: hit.t)
     }
-    return scene.normal(of: hit.what, ray, t: hit.t)
+    return Kernel.normal(
+      sphereRecord ?? scene.spheres[index], ray, t: hit.t, memo: sphereMemo)
   }
 
   /// One sample's colour: the background for a miss, else the hit shaded.

@@ -21,8 +21,7 @@ extension Renderer {
         let triangleEntries = tiles.triangleEntries(
           ofTileAt: start, row: rows.lowerBound)
         let tile = start..<min(start + width, settings.width)
-        if settings.samples == 1 || targets.wantsDepth || targets.wantsNormals
-        {
+        if settings.samples == 1 || targets.wantsDepth || targets.wantsNormals {
           renderProjectedTile(
             entries, triangleEntries, columns: tile, rows: rows, columns,
             scene, camera, settings, targets)
@@ -146,10 +145,12 @@ extension Renderer {
               column: column, row: row, by: search, scene: scene,
               camera: camera, settings: settings), at: pixel)
         }
-        let hit = scene.nearest(ray, by: search)
+        var memo = Kernel.noMemo
+        let hit = scene.nearest(
+          ray, after: search.nearestSphere(ray, in: scene, memo: &memo))
         store(
           hit, ray: ray, pixel: pixel, scene: scene, settings: settings,
-          targets: targets)
+          targets: targets, sphereMemo: memo)
       }
     }
   }

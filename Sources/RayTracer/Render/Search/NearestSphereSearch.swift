@@ -20,4 +20,22 @@ protocol NearestSphereSearch {
   func nearestSphere<Kernel: IntersectionKernel>(
     _ ray: CameraRay<Kernel.Scalar>, in scene: CompiledScene<Kernel>
   ) -> NearestHit<Kernel.Scalar, CompiledScene<Kernel>.Nearest>
+
+  /// `nearestSphere(_:in:)`, also keeping in `memo` what the nearest
+  /// hit's test computed that its normal needs (the flat loops), or
+  /// leaving it as it was (the hierarchy).
+  func nearestSphere<Kernel: IntersectionKernel>(
+    _ ray: CameraRay<Kernel.Scalar>, in scene: CompiledScene<Kernel>,
+    memo: inout Kernel.SphereHitMemo
+  ) -> NearestHit<Kernel.Scalar, CompiledScene<Kernel>.Nearest>
+}
+
+extension NearestSphereSearch {
+  @inline(__always)
+  func nearestSphere<Kernel: IntersectionKernel>(
+    _ ray: CameraRay<Kernel.Scalar>, in scene: CompiledScene<Kernel>,
+    memo: inout Kernel.SphereHitMemo
+  ) -> NearestHit<Kernel.Scalar, CompiledScene<Kernel>.Nearest> {
+    nearestSphere(ray, in: scene)
+  }
 }

@@ -10,6 +10,15 @@ struct CulledSpheres: NearestSphereSearch {
   ) -> NearestHit<Kernel.Scalar, CompiledScene<Kernel>.Nearest> {
     scene.nearestSphere(ray, among: candidates.lazy.map { Int($0) })
   }
+
+  @inline(__always)
+  func nearestSphere<Kernel: IntersectionKernel>(
+    _ ray: CameraRay<Kernel.Scalar>, in scene: CompiledScene<Kernel>,
+    memo: inout Kernel.SphereHitMemo
+  ) -> NearestHit<Kernel.Scalar, CompiledScene<Kernel>.Nearest> {
+    scene.nearestSphere(
+      ray, among: candidates.lazy.map { Int($0) }, memo: &memo)
+  }
 }
 
 /// Culling per tile: each tile of pixels tests only the spheres its rays
