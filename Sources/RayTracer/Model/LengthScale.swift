@@ -35,7 +35,181 @@ public enum LengthScale {
   public static func exponent<S: RayScalar>(
     _ all: Primitives<Double>, eye: Vector3<Double>, as _: S.Type
   ) -> Int {
-    let largest = largestLength(all, eye: eye)
+    exponent(largestLength(all, eye: eye), as: S.self)
+  }
+
+  /// The largest magnitude of any length of the scene: coordinates of
+  /// the eye, centres and vertices, radii, plane offsets and the rows of a
+  /// transformed sphere's matrix.
+  static func largestLength(
+    _ all: Primitives<Double>, eye: Vector3<Double>
+  ) -> Double {
+    var largest = eye.maxMagnitude
+    all.forEach { largest = Swift.max(largest, $0.largestLength) }
+    return largest
+  }
+
+  /// Why `scene` cannot be drawn right in `precision` at any common scale,
+  /// or nil: an object so small beside the scene's largest length that
+  /// the squares and products of its test, at the scale the render
+  /// chooses, fall below the precision's normal range, where they keep
+  /// few digits or none: a sphere whose radius squared does (a radius of
+  /// 1e-25 three units from the eye in Float); a triangle whose longest
+  /// edge squared, times its reach from the eye where that is below 1,
+  /// does (its edge functions and their sum weighted by depth,
+  /// `TriangleIntersection`); an ellipsoid whose shortest axis squared
+  /// does (its local ray's direction, M⁻¹·d, would overflow). Rescaling
+  /// moves every length together, so nothing saves them; the command line
+  /// refuses such a scene rather than draw nothing or everything.
+  public static func problem(_ scene: Scene, precision: Precision)
+    -> String?
+  {
+    // One pass for the scale and the smallest measures, which scale as
+    // its powers; a second, to name the object, only when one fails.
+    let eye = scene.camera.center
+    var extent = Extent(eye: eye)
+    extent.measure(.group(scene.root))
+    let exponent =
+      switch precision {
+      case .float: Self.exponent(extent.largest, as: Float.self)
+      case .double: Self.exponent(extent.largest, as: Double.self)
+      }
+    let scale = factor(-exponent)
+    let smallest = precision.smallestNormal
+    guard extent.fails(scale: scale, smallest: smallest) else { return nil }
+    var found: String?
+    forEachPrimitive(in: .group(scene.root)) { primitive in
+      guard found == nil,
+        let what = tooSmall(
+          primitive, eye: eye, scale: scale, smallest: smallest)
+      else { return }
+      found =
+        "\(what) is too small beside the scene's largest length, "
+        + "\(extent.largest), for \(precision.rawValue): its squares "
+        + "leave the range at any common scale"
+        + (precision == .float ? "; use --precision double" : "")
+    }
+    return found
+  }
+
+  /// The scene's largest length and, per kind, the smallest of the
+  /// measures `tooSmall` compares at a scale f: a radius squared (f²), a
+  /// triangle's longest edge squared (f²) and that times its reach (f³),
+  /// an ellipsoid's shortest axis squared (f²). Some primitive fails at
+  /// f exactly when one of these minima does.
+  struct Extent {
+    let eye: Vector3<Double>
+    var largest: Double
+    var radiusSquared = Double.infinity
+    var edgeSquared = Double.infinity
+    var edgeSquaredReach = Double.infinity
+    var axisSquared = Double.infinity
+
+    init(eye: Vector3<Double>) {
+      self.eye = eye
+      largest = eye.maxMagnitude
+    }
+
+    mutating func measure(_ object: SceneObject<Double>) {
+      switch object {
+      case .sphere(let sphere): add(sphere)
+      case .plane(let plane):
+        largest = Swift.max(largest, plane.offset.magnitude)
+      case .triangle(let triangle): add(triangle)
+      case .group(let group):
+        for child in group.objects { measure(child) }
+      case .transform:
+        let all = Group([object]).flattened()
+        for sphere in all.spheres { add(sphere) }
+        for plane in all.planes {
+          largest = Swift.max(largest, plane.offset.magnitude)
+        }
+        for triangle in all.triangles { add(triangle) }
+        for ellipsoid in all.transformedSpheres {
+          largest = Swift.max(largest, ellipsoid.largestLength)
+          let axis = ellipsoid.shortestAxis
+          axisSquared = Swift.min(axisSquared, axis * axis)
+        }
+      }
+    }
+
+    mutating func add(_ sphere: Sphere<Double>) {
+      largest = Swift.max(
+        largest, sphere.center.maxMagnitude, sphere.radius.magnitude)
+      radiusSquared = Swift.min(radiusSquared, sphere.radius * sphere.radius)
+    }
+
+    mutating func add(_ triangle: Triangle<Double>) {
+      largest = Swift.max(
+        largest, triangle.v0.maxMagnitude, triangle.v1.maxMagnitude,
+        triangle.v2.maxMagnitude)
+      let (edge, reach) = LengthScale.edgeAndReach(triangle, eye: eye)
+      guard edge > 0 else { return }
+      edgeSquared = Swift.min(edgeSquared, edge * edge)
+      edgeSquaredReach = Swift.min(edgeSquaredReach, edge * edge * reach)
+    }
+
+    /// Whether some primitive fails at scale `f` (see `tooSmall`).
+    func fails(scale f: Double, smallest: Double) -> Bool {
+      radiusSquared * f * f < smallest || edgeSquared * f * f < smallest
+        || edgeSquaredReach * f * f * f < smallest
+        || axisSquared * f * f < 4 * smallest
+    }
+  }
+
+  /// A triangle's longest edge and the farthest of its vertices from the
+  /// eye, in max-norm.
+  static func edgeAndReach(_ triangle: Triangle<Double>, eye: Vector3<Double>)
+    -> (edge: Double, reach: Double)
+  {
+    let (a, b, c) = (triangle.v0, triangle.v1, triangle.v2)
+    return (
+      Swift.max(
+        (b - a).maxMagnitude, (c - b).maxMagnitude, (a - c).maxMagnitude),
+      Swift.max(
+        (a - eye).maxMagnitude, (b - eye).maxMagnitude,
+        (c - eye).maxMagnitude)
+    )
+  }
+
+  /// The primitive, described, when its squares at `scale` fall below
+  /// `smallest` (see `problem`); nil when they do not.
+  static func tooSmall(
+    _ primitive: Primitive, eye: Vector3<Double>, scale: Double,
+    smallest: Double
+  ) -> String? {
+    switch primitive {
+    case .sphere(let sphere):
+      let radius = sphere.radius * scale
+      guard radius * radius < smallest else { return nil }
+      let c = sphere.center
+      return "a sphere of radius \(sphere.radius) (centre \(c.x) \(c.y) "
+        + "\(c.z))"
+    case .plane: return nil
+    case .triangle(let triangle):
+      let (a, b, c) = (triangle.v0, triangle.v1, triangle.v2)
+      let (unscaledEdge, unscaledReach) = edgeAndReach(triangle, eye: eye)
+      let (edge, reach) = (unscaledEdge * scale, unscaledReach * scale)
+      // A degenerate triangle (no edge) is never hit at any scale.
+      guard edge > 0, edge * edge * Swift.min(reach, 1) < smallest else {
+        return nil
+      }
+      return "a triangle (vertices \(a.x) \(a.y) \(a.z), \(b.x) \(b.y) "
+        + "\(b.z), \(c.x) \(c.y) \(c.z))"
+    case .ellipsoid(let ellipsoid):
+      let axis = ellipsoid.shortestAxis
+      guard (axis * scale) * (axis * scale) < 4 * smallest else {
+        return nil
+      }
+      return "a transformed sphere whose shortest axis is \(axis)"
+    }
+  }
+
+  /// The k of `exponent(_:eye:as:)` for a scene whose largest length is
+  /// `largest`.
+  static func exponent<S: RayScalar>(_ largest: Double, as _: S.Type)
+    -> Int
+  {
     guard largest > 0, largest.isFinite else { return 0 }
     // Records are computed from the scene's Double values in Double
     // (compensated, `CameraRelative`) before they are rounded to S: the
@@ -50,87 +224,85 @@ public enum LengthScale {
     return (-limit...limit).contains(exponent) ? 0 : exponent
   }
 
-  /// The largest magnitude of any length of the scene: coordinates of
-  /// the eye, centres and vertices, radii, plane offsets and the rows of a
-  /// transformed sphere's matrix.
-  static func largestLength(
-    _ all: Primitives<Double>, eye: Vector3<Double>
-  ) -> Double {
-    var largest = eye.maxMagnitude
-    for sphere in all.spheres {
-      largest = Swift.max(
-        largest, sphere.center.maxMagnitude, sphere.radius.magnitude)
-    }
-    for plane in all.planes {
-      largest = Swift.max(largest, plane.offset.magnitude)
-    }
-    for triangle in all.triangles {
-      largest = Swift.max(
-        largest, triangle.v0.maxMagnitude, triangle.v1.maxMagnitude,
-        triangle.v2.maxMagnitude)
-    }
-    for ellipsoid in all.transformedSpheres {
-      let m = ellipsoid.matrix
-      let reach =
-        ellipsoid.sphere.center.maxMagnitude + ellipsoid.sphere.radius
-      for entry in [
-        m.m00, m.m01, m.m02, m.m10, m.m11, m.m12, m.m20, m.m21,
-        m.m22,
-      ] {
-        largest = Swift.max(largest, entry.magnitude * reach)
-      }
-      largest = Swift.max(
-        largest, m.m03.magnitude, m.m13.magnitude, m.m23.magnitude)
-    }
-    return largest
-  }
-
-  /// Why `scene` cannot be drawn right in `precision` at any common scale,
-  /// or nil: a sphere so small beside the scene's largest length that its
-  /// radius squared, at the scale the render chooses, falls below the
-  /// precision's normal range (a radius of 1e-25 three units from the eye
-  /// in Float). Rescaling moves every length together, so nothing saves
-  /// it; the command line refuses such a scene rather than draw it wrong.
-  public static func problem(_ scene: Scene, precision: Precision)
-    -> String?
-  {
-    // Only spheres can have the problem: a mesh-only scene is not
-    // flattened a second time here (it is when compiled).
-    guard containsSphere(.group(scene.root)) else { return nil }
-    let all = scene.root.flattened()
-    let eye = scene.camera.center
-    let exponent =
-      switch precision {
-      case .float: Self.exponent(all, eye: eye, as: Float.self)
-      case .double: Self.exponent(all, eye: eye, as: Double.self)
-      }
-    let scale = factor(-exponent)
-    for sphere in all.spheres {
-      let radius = sphere.radius * scale
-      guard radius * radius < precision.smallestNormal else { continue }
-      let c = sphere.center
-      return "a sphere of radius \(sphere.radius) (centre \(c.x) \(c.y) "
-        + "\(c.z)) is too small beside the scene's largest length, "
-        + "\(largestLength(all, eye: eye)), for \(precision.rawValue): its "
-        + "radius squared leaves the range at any common scale"
-        + (precision == .float ? "; use --precision double" : "")
-    }
-    return nil
-  }
-
-  /// Whether a sphere is anywhere in `object`, transformed or not.
-  static func containsSphere(_ object: SceneObject<Double>) -> Bool {
+  /// Calls `body` with every primitive of `object` in the world: objects
+  /// outside transforms as they are, each transform's placed once
+  /// (`Group.flattened`), so a mesh is not flattened a second time.
+  static func forEachPrimitive(
+    in object: SceneObject<Double>, _ body: (Primitive) -> Void
+  ) {
     switch object {
-    case .sphere: true
-    case .plane, .triangle: false
-    case .group(let group): group.objects.contains { containsSphere($0) }
-    case .transform(let transform): containsSphere(transform.object)
+    case .sphere(let sphere): body(.sphere(sphere))
+    case .plane(let plane): body(.plane(plane))
+    case .triangle(let triangle): body(.triangle(triangle))
+    case .group(let group):
+      for child in group.objects { forEachPrimitive(in: child, body) }
+    case .transform: Group([object]).flattened().forEach(body)
+    }
+  }
+
+  /// One primitive of a flattened scene.
+  enum Primitive {
+    case sphere(Sphere<Double>)
+    case plane(Plane<Double>)
+    case triangle(Triangle<Double>)
+    case ellipsoid(TransformedSphere<Double>)
+
+    /// Its largest length, for the scene's scale: coordinates of centres
+    /// and vertices, radii, plane offsets, a transformed sphere's reach.
+    var largestLength: Double {
+      switch self {
+      case .sphere(let sphere):
+        Swift.max(sphere.center.maxMagnitude, sphere.radius.magnitude)
+      case .plane(let plane): plane.offset.magnitude
+      case .triangle(let triangle):
+        Swift.max(
+          triangle.v0.maxMagnitude, triangle.v1.maxMagnitude,
+          triangle.v2.maxMagnitude)
+      case .ellipsoid(let ellipsoid): ellipsoid.largestLength
+      }
     }
   }
 
   /// 2^k as a Double (k within Double's exponent range).
   public static func factor(_ exponent: Int) -> Double {
     Double(sign: .plus, exponent: exponent, significand: 1)
+  }
+}
+
+extension Primitives<Double> {
+  /// Calls `body` with every primitive, kind by kind.
+  func forEach(_ body: (LengthScale.Primitive) -> Void) {
+    for sphere in spheres { body(.sphere(sphere)) }
+    for plane in planes { body(.plane(plane)) }
+    for triangle in triangles { body(.triangle(triangle)) }
+    for ellipsoid in transformedSpheres { body(.ellipsoid(ellipsoid)) }
+  }
+}
+
+extension TransformedSphere<Double> {
+  /// The length of its shortest axis, nearly: the sphere's radius times
+  /// the shortest column of the matrix's linear part.
+  var shortestAxis: Double {
+    let m = matrix
+    return Swift.min(
+      Vector3(m.m00, m.m10, m.m20).length,
+      Vector3(m.m01, m.m11, m.m21).length,
+      Vector3(m.m02, m.m12, m.m22).length) * sphere.radius
+  }
+
+  /// The largest length it gives the scene's scale: each linear entry of
+  /// its matrix times the sphere's reach in its own space, and the
+  /// translation.
+  var largestLength: Double {
+    let m = matrix
+    let reach = sphere.center.maxMagnitude + sphere.radius
+    var largest = Swift.max(m.m03.magnitude, m.m13.magnitude, m.m23.magnitude)
+    for entry in [
+      m.m00, m.m01, m.m02, m.m10, m.m11, m.m12, m.m20, m.m21, m.m22,
+    ] {
+      largest = Swift.max(largest, entry.magnitude * reach)
+    }
+    return largest
   }
 }
 

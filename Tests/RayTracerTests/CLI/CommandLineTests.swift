@@ -246,7 +246,7 @@ final class CommandLineTests: XCTestCase {
       outcome.stderr,
       "\(scene): error: a sphere of radius 1e-25 (centre 0.0 0.0 0.0) is too "
         + "small beside the scene's largest length, 10.0, for float: its "
-        + "radius squared leaves the range at any common scale; use "
+        + "squares leave the range at any common scale; use "
         + "--precision double\n")
     XCTAssertFalse(files().contains("out.png"))
   }

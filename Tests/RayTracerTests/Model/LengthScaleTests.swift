@@ -98,8 +98,8 @@ final class LengthScaleTests: XCTestCase {
     XCTAssertEqual(
       LengthScale.problem(scene(1e-25), precision: .float),
       "a sphere of radius 1e-25 (centre 0.0 0.0 0.0) is too small beside "
-        + "the scene's largest length, 3.0, for float: its radius squared "
-        + "leaves the range at any common scale; use --precision double")
+        + "the scene's largest length, 3.0, for float: its squares leave "
+        + "the range at any common scale; use --precision double")
     XCTAssertNil(LengthScale.problem(scene(1e-25), precision: .double))
     XCTAssertNil(LengthScale.problem(scene(1e-15), precision: .float))
     XCTAssertNotNil(LengthScale.problem(scene(1e-160), precision: .double))
@@ -107,6 +107,57 @@ final class LengthScaleTests: XCTestCase {
     var small = scene(1e-25)
     small.camera.center = Vector3(0, 0, 3e-25)
     XCTAssertNil(LengthScale.problem(small, precision: .float))
+  }
+
+  /// A triangle or ellipsoid whose squares leave the precision at the
+  /// scene's common scale is named, as a sphere is: a speck of 1e-20 near
+  /// the eye beside a sphere 1e21 away (Float's squares hold 2^±126), and
+  /// one of 1e-25 three units away. Each alone, or in Double, is drawn
+  /// (its own scale brings it near 1).
+  func testProblem_TriangleAndEllipsoidTooSmallBesideTheScene() throws {
+    let camera = try XCTUnwrap(
+      PerspectiveCamera(
+        center: .zero, direction: Vector3(0, 0, -1), up: Vector3(0, 1, 0),
+        angle: 45))
+    func triangle(_ size: Double, at z: Double) -> SceneObject<Double> {
+      .triangle(
+        Triangle(
+          Vector3(-size, -size, z), Vector3(size, -size, z),
+          Vector3(0, size, z), materialIndex: 0))
+    }
+    func ellipsoid(_ size: Double, at z: Double) -> SceneObject<Double> {
+      .transform(
+        try! XCTUnwrap(
+          Transform(
+            matrix: .translation(Vector3(0, 0, z))
+              * .scale(Vector3(size, 2 * size, size)),
+            object: .sphere(Sphere(center: .zero, radius: 1)))))
+    }
+    let far = SceneObject<Double>.sphere(
+      Sphere(center: Vector3(0, 0, -3e21), radius: 1e20))
+    func scene(_ objects: SceneObject<Double>...) -> Scene {
+      Scene(camera: camera, root: Group(objects))
+    }
+    let speck = triangle(1e-20, at: -3e-20)
+    XCTAssertEqual(
+      LengthScale.problem(scene(speck, far), precision: .float),
+      "a triangle (vertices -1e-20 -1e-20 -3e-20, 1e-20 -1e-20 -3e-20, "
+        + "0.0 1e-20 -3e-20) is too small beside the scene's largest "
+        + "length, 3e+21, for float: its squares leave the range at any "
+        + "common scale; use --precision double")
+    XCTAssertNil(LengthScale.problem(scene(speck), precision: .float))
+    XCTAssertNil(LengthScale.problem(scene(speck, far), precision: .double))
+    XCTAssertNotNil(
+      LengthScale.problem(
+        scene(triangle(1e-25, at: -3)), precision: .float))
+    XCTAssertNil(
+      LengthScale.problem(
+        scene(triangle(1e-15, at: -3)), precision: .float))
+    let small = ellipsoid(1e-20, at: -3e-20)
+    XCTAssertNotNil(
+      LengthScale.problem(scene(small, far), precision: .float))
+    XCTAssertNil(LengthScale.problem(scene(small), precision: .float))
+    XCTAssertNil(LengthScale.problem(scene(small, far), precision: .double))
   }
 
   // MARK: - The searches at extreme scales
