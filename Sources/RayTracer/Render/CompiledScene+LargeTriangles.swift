@@ -25,10 +25,16 @@ extension CompiledScene {
   func testLargeTriangles(
     _ ray: WatertightRay<Scalar>, _ nearest: inout NearestHit<Scalar, Nearest>
   ) {
-    for (offset, plane) in trianglePlanes.enumerated() {
-      let index = ordinaryTriangleCount + offset
-      nearest.test(.triangle(index)) {
-        triangles[index].intersect(ray, plane: plane, before: $0)?.t
+    let first = ordinaryTriangleCount
+    triangles.withUnsafeBufferPointer { records in
+      trianglePlanes.withUnsafeBufferPointer { planes in
+        for offset in planes.indices {
+          nearest.test(.triangle(first + offset)) {
+            TriangleRecord.t(
+              ray, records.baseAddress! + first + offset,
+              plane: planes[offset], before: $0)
+          }
+        }
       }
     }
   }

@@ -36,22 +36,26 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
     TriangleIntersection.intersect(ray, v0, v1, v2, after: 0, before: tMax)
   }
 
-  /// The watertight test decides the hit and the barycentrics; the plane
-  /// gives t (`TrianglePlane`): for triangles much larger than their
-  /// distance from the eye.
-  func intersect(
-    _ ray: WatertightRay<Scalar>,
+  /// The t of a triangle much larger than its distance from the eye, for
+  /// the record at `record`, read in place: the watertight test decides
+  /// the hit, the plane gives t (`TrianglePlane`). The plane first, which settles most misses (a ground
+  /// triangle's sky) with one product and a division, then the watertight
+  /// test. Both must hold, in either order, so the answer is the same.
+  @inline(__always)
+  static func t(
+    _ ray: WatertightRay<Scalar>, _ record: UnsafePointer<TriangleRecord>,
     plane: (normal: Vector3<Scalar>, distance: Scalar),
     before tMax: Scalar
-  ) -> (t: Scalar, u: Scalar, v: Scalar, w: Scalar)? {
+  ) -> Scalar? {
     guard
-      let hit = TriangleIntersection.intersect(
-        ray, v0, v1, v2, after: -.infinity, before: .infinity),
       let t = TrianglePlane.t(
         normal: plane.normal, distance: plane.distance,
-        direction: ray.direction, after: 0, before: tMax)
+        direction: ray.direction, after: 0, before: tMax),
+      TriangleIntersection.intersect(
+        ray, record.pointee.v0, record.pointee.v1, record.pointee.v2,
+        after: -.infinity, before: .infinity) != nil
     else { return nil }
-    return (t, hit.u, hit.v, hit.w)
+    return t
   }
 
   /// The normal where `ray` hits: the barycentrics are found again (the

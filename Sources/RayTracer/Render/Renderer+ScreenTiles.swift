@@ -261,8 +261,9 @@ extension Renderer {
                 let slot = row * tileWidth + column
                 searches[slot].test(.triangle(index)) {
                   if let plane {
-                    record.intersect(prepared[slot], plane: plane, before: $0)?
-                      .t
+                    TriangleRecord.t(
+                      prepared[slot], records.baseAddress! + index,
+                      plane: plane, before: $0)
                   } else {
                     record.intersect(prepared[slot], before: $0)?.t
                   }
