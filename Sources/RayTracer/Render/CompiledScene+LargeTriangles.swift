@@ -21,7 +21,7 @@ extension CompiledScene {
   }
 
   /// Offers each large triangle's hit to `nearest`.
-  @inline(never)
+  @inline(__always)
   func testLargeTriangles(
     _ ray: WatertightRay<Scalar>, _ nearest: inout NearestHit<Scalar, Nearest>
   ) {

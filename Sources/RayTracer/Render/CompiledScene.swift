@@ -51,6 +51,10 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// Spheres under transforms that are not similarities.
   var ellipsoids: [EllipsoidRecord<Kernel>] = []
   var ellipsoidMaterials: [Int32] = []
+  /// Objects the scene's common scale cannot hold, each group compiled at
+  /// its own (`LengthScale.layers`) and searched after this scene's own
+  /// search (`Renderer.store`); empty for every ordinary scene.
+  public internal(set) var layers: [CompiledScene] = []
   public let materials: [Material<Scalar>]
   /// `materials` without their texture paths, for shading.
   let surfaces: [Material<Scalar>.Surface]
@@ -87,13 +91,33 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     hierarchyThreshold: Int = BoundingVolumeHierarchy<Scalar>.defaultThreshold,
     projectionThreshold: Int = .max, triangleProjectionThreshold: Int = .max
   ) {
-    camera = PerspectiveCamera(scene.camera)
-    eye = Vector3(scene.camera.center)
     // Lengths scaled by 2^−k when the scene is beyond the precision's
     // comfortable range (`LengthScale`); k = 0, nothing scaled, otherwise.
-    let unscaled = scene.root.flattened()
-    let exponent = LengthScale.exponent(
-      unscaled, eye: scene.camera.center, as: Scalar.self)
+    // Objects the common scale cannot hold are traced at their own, each
+    // group a scene of its own (`layers`).
+    let split = LengthScale.layers(
+      scene.root.flattened(), eye: scene.camera.center, as: Scalar.self)
+    self.init(
+      scene, split.main, exponent: split.exponent, textures: textures,
+      hierarchyThreshold: hierarchyThreshold,
+      projectionThreshold: projectionThreshold,
+      triangleProjectionThreshold: triangleProjectionThreshold)
+    layers = split.others.map {
+      CompiledScene(
+        scene, $0.primitives, exponent: $0.exponent, textures: textures,
+        hierarchyThreshold: hierarchyThreshold, projectionThreshold: .max,
+        triangleProjectionThreshold: .max)
+    }
+  }
+
+  /// The scene's `unscaled` primitives compiled at the scale 2^−`exponent`.
+  private init(
+    _ scene: Scene, _ unscaled: consuming Primitives<Double>, exponent: Int,
+    textures: [Texture?], hierarchyThreshold: Int, projectionThreshold: Int,
+    triangleProjectionThreshold: Int
+  ) {
+    camera = PerspectiveCamera(scene.camera)
+    eye = Vector3(scene.camera.center)
     lengthScale = Scalar(LengthScale.factor(exponent))
     let all: Primitives<Double>
     let eyeDouble: Vector3<Double>

@@ -5,8 +5,34 @@ extension Renderer {
   /// `sphereRecord`, when given, is a copy of the record of the sphere the
   /// search found, for the normal if that sphere is still the nearest;
   /// `sphereMemo` what the sphere search kept from that sphere's test.
+  ///
+  /// A scene with layers (objects traced at their own scale,
+  /// `CompiledScene.layers`) has them searched here, after the scene's own
+  /// search, and a nearer hit in one is written from its layer.
   @inline(__always)
   static func store<Kernel: IntersectionKernel>(
+    _ hit: (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest)?,
+    ray: CameraRay<Kernel.Scalar>, pixel: Int, scene: CompiledScene<Kernel>,
+    settings: RenderSettings, targets: Targets<Kernel.Scalar>,
+    sphereRecord: Kernel.SphereRecord? = nil,
+    sphereMemo: Kernel.SphereHitMemo = Kernel.noMemo
+  ) {
+    if !scene.layers.isEmpty,
+      let (layer, layerHit, layerRay) = scene.nearerInLayers(ray, than: hit)
+    {
+      write(
+        layerHit, ray: layerRay, pixel: pixel, scene: scene.layers[layer],
+        settings: settings, targets: targets)
+      return
+    }
+    write(
+      hit, ray: ray, pixel: pixel, scene: scene, settings: settings,
+      targets: targets, sphereRecord: sphereRecord, sphereMemo: sphereMemo)
+  }
+
+  /// `store` for a hit of `scene` itself.
+  @inline(__always)
+  static func write<Kernel: IntersectionKernel>(
     _ hit: (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest)?,
     ray: CameraRay<Kernel.Scalar>, pixel: Int, scene: CompiledScene<Kernel>,
     settings: RenderSettings, targets: Targets<Kernel.Scalar>,
@@ -53,13 +79,23 @@ extension Renderer {
       sphereRecord ?? scene.spheres[index], ray, t: hit.t, memo: sphereMemo)
   }
 
-  /// One sample's colour: the background for a miss, else the hit shaded.
+  /// One sample's colour: the background for a miss, else the hit shaded
+  /// (from a layer, when one has a nearer hit, as in `store`).
   @inline(__always)
   static func sampleColor<Kernel: IntersectionKernel>(
     _ hit: (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest)?,
     ray: CameraRay<Kernel.Scalar>, scene: CompiledScene<Kernel>,
     sphereRecord: Kernel.SphereRecord? = nil, attenuate: Bool
   ) -> RGB<Kernel.Scalar> {
+    if !scene.layers.isEmpty,
+      let (layer, layerHit, layerRay) = scene.nearerInLayers(ray, than: hit)
+    {
+      let layerScene = scene.layers[layer]
+      return shade(
+        layerHit, ray: layerRay,
+        normal: layerScene.normal(of: layerHit.what, layerRay, t: layerHit.t),
+        scene: layerScene, attenuate: attenuate)
+    }
     guard let hit else { return scene.background }
     return shade(
       hit, ray: ray,

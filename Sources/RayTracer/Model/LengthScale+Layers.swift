@@ -1,0 +1,77 @@
+/// Objects traced at their own scale: a scene whose objects span more than
+/// the precision's squares hold at one common scale (a speck of 1e-20 by
+/// the eye beside a planet 1e21 away, in Float) is split into layers, each
+/// traced with its own power of two (see `LengthScale`).
+extension LengthScale {
+  /// A scene's primitives grouped by the scale each is traced at.
+  public struct Layers {
+    /// What the scene's common scale 2^−`exponent` holds: every plane, and
+    /// every other primitive whose squares stay normal there
+    /// (`tooSmall`). All of the scene, for every scene the project had
+    /// before, which therefore runs as before.
+    public var main: Primitives<Double>
+    public var exponent: Int
+    /// The rest, grouped by their own scale (the k of a scene of the
+    /// object alone with the same eye), largest first; scene order within
+    /// each group.
+    public var others: [(primitives: Primitives<Double>, exponent: Int)]
+  }
+
+  /// `all` split into layers for a render in `S` seen from `eye`: one pass
+  /// over the primitives for every scene whose objects all fit its common
+  /// scale, a second only when one does not.
+  public static func layers<S: RayScalar>(
+    _ all: consuming Primitives<Double>, eye: Vector3<Double>,
+    as _: S.Type
+  ) -> Layers {
+    var extent = Extent(eye: eye)
+    extent.add(all)
+    let exponent = self.exponent(extent.largest, as: S.self)
+    let scale = factor(-exponent)
+    // The narrower of S's and Double's ranges, as for `exponent`: the
+    // records are computed in Double first.
+    let smallest = Swift.max(
+      Double(S.leastNormalMagnitude), Double.leastNormalMagnitude)
+    guard extent.fails(scale: scale, smallest: smallest) else {
+      return Layers(main: all, exponent: exponent, others: [])
+    }
+    var main = Primitives<Double>()
+    main.planes = all.planes
+    var others: [Int: Primitives<Double>] = [:]
+    /// The scale the primitive is traced at: the scene's when it fits
+    /// there, else its own.
+    func layer(of primitive: Primitive) -> Int {
+      guard
+        tooSmall(primitive, eye: eye, scale: scale, smallest: smallest)
+          != nil
+      else { return exponent }
+      return self.exponent(
+        Swift.max(eye.maxMagnitude, primitive.largestLength), as: S.self)
+    }
+    func place(
+      _ primitive: Primitive,
+      _ append: (inout Primitives<Double>) -> Void
+    ) {
+      let k = layer(of: primitive)
+      if k == exponent {
+        append(&main)
+      } else {
+        append(&others[k, default: Primitives()])
+      }
+    }
+    for sphere in all.spheres {
+      place(.sphere(sphere)) { $0.spheres.append(sphere) }
+    }
+    for triangle in all.triangles {
+      place(.triangle(triangle)) { $0.triangles.append(triangle) }
+    }
+    for ellipsoid in all.transformedSpheres {
+      place(.ellipsoid(ellipsoid)) { $0.transformedSpheres.append(ellipsoid) }
+    }
+    return Layers(
+      main: main, exponent: exponent,
+      others: others.sorted { $0.key > $1.key }.map {
+        (primitives: $0.value, exponent: $0.key)
+      })
+  }
+}
