@@ -207,3 +207,26 @@ write("mesh-translated-1e6.txt", "A triangle mesh translated by 1e6 along every 
       + group(["MaterialIndex 1",
                "Transform { Translate 1000000.0 1000000.0 1000000.0 "
                "TriangleMesh { obj_file icosphere.obj } }"]))
+
+
+# Specks a few of their sizes from the eye (a sphere, a triangle and an
+# ellipsoid of size s) beside a planet of radius S 3S away: at one common
+# scale the squares of the specks or of the planet leave the precision, so
+# each is traced at its own (LengthScale.layers). The second is double only.
+for small, large in ((1e-20, 1e21), (1e-200, 1e201)):
+    s, S = small, large
+    name = "specks-and-planet-1e%d" % round(math.log10(large))
+    only = large > 1e30
+    if only:
+        DOUBLE_ONLY.append(name)
+    write(name + ".txt", "Specks of size %r beside a planet of radius %r%s." % (s, S,
+          " (double only: Float cannot hold its numbers)" if only else ""),
+          "no common scale holds the squares of both; each is traced at its own.",
+          camera((0, 0, 0), (0, 0, -1), (0, 1, 0), 70) + LIGHTS + MATERIALS
+          + group(["MaterialIndex 0", sphere((-1.2 * s, 0.5 * s, -3 * s), 0.5 * s),
+                   "MaterialIndex 1", triangle((-0.4 * s, 0.1 * s, -3 * s), (0.4 * s, 0.1 * s, -3 * s),
+                                               (0, 0.9 * s, -3 * s)),
+                   "MaterialIndex 0",
+                   "Transform { Translate %r %r %r Scale %r %r %r Sphere { center 0 0 0 radius 1 } }"
+                   % (1.2 * s, 0.5 * s, -3 * s, 0.3 * s, 0.5 * s, 0.3 * s),
+                   "MaterialIndex 2", sphere((0.05 * S, -1.2 * S, -3 * S), S)]))

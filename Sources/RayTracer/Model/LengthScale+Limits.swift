@@ -43,8 +43,8 @@ extension LengthScale {
           smallest: smallest)
       else { return }
       found =
-        "\(what) is too small beside its own largest length with the eye, "
-        + "\(own), for \(precision.rawValue): its squares leave the range "
+        "\(what) is too small beside its coordinates and the eye's (up to "
+        + "\(own)) for \(precision.rawValue): its squares leave the range "
         + "at any scale"
         + (precision == .float ? "; use --precision double" : "")
     }
@@ -153,7 +153,8 @@ extension LengthScale {
       let (unscaledEdge, unscaledReach) = edgeAndReach(triangle, eye: eye)
       let (edge, reach) = (unscaledEdge * scale, unscaledReach * scale)
       // A degenerate triangle (no edge) is never hit at any scale.
-      guard edge > 0, edge * edge * Swift.min(reach, 1) < smallest else {
+      guard unscaledEdge > 0, edge * edge * Swift.min(reach, 1) < smallest
+      else {
         return nil
       }
       return "a triangle (vertices \(a.x) \(a.y) \(a.z), \(b.x) \(b.y) "

@@ -128,10 +128,16 @@ extension TransformedSphere<Double> {
   /// the shortest column of the matrix's linear part.
   var shortestAxis: Double {
     let m = matrix
+    // Each column's length without squaring it at its own scale, where
+    // the squares of an axis of 1e-200 would underflow.
+    func length(_ column: Vector3<Double>) -> Double {
+      let largest = column.maxMagnitude
+      return largest == 0 ? 0 : (column / largest).length * largest
+    }
     return Swift.min(
-      Vector3(m.m00, m.m10, m.m20).length,
-      Vector3(m.m01, m.m11, m.m21).length,
-      Vector3(m.m02, m.m12, m.m22).length) * sphere.radius
+      length(Vector3(m.m00, m.m10, m.m20)),
+      length(Vector3(m.m01, m.m11, m.m21)),
+      length(Vector3(m.m02, m.m12, m.m22))) * sphere.radius
   }
 
   /// The largest length it gives the scene's scale: each linear entry of

@@ -101,17 +101,24 @@ extension SceneObject {
     case .group(let group):
       return .group(group.placed())
     case .transform:
-      let all = Group([self]).flattened()
-      var objects: [SceneObject] = all.spheres.map { .sphere($0) }
-      objects += all.planes.map { .plane($0) }
-      objects += all.triangles.map { .triangle($0) }
-      objects += all.transformedSpheres.map {
-        .transform(
-          Transform(
-            matrix: $0.matrix, inverse: $0.inverse, object: .sphere($0.sphere)))
-      }
-      return .group(Group(objects))
+      return .group(Group(Group([self]).flattened()))
     }
+  }
+}
+
+extension Group {
+  /// The primitives as one group in the world, kind by kind: spheres,
+  /// planes, triangles, then each ellipsoid as a transform of its sphere.
+  public init(_ all: Primitives<Scalar>) {
+    var objects: [SceneObject] = all.spheres.map { .sphere($0) }
+    objects += all.planes.map { .plane($0) }
+    objects += all.triangles.map { .triangle($0) }
+    objects += all.transformedSpheres.map {
+      .transform(
+        Transform(
+          matrix: $0.matrix, inverse: $0.inverse, object: .sphere($0.sphere)))
+    }
+    self.init(objects)
   }
 }
 

@@ -16,6 +16,9 @@
 /// A scene beyond Double's comfortable range is traced with its lengths
 /// scaled by a power of two, exactly as the fast engine traces it
 /// (`LengthScale`): the world's t is the traced t times `lengthScale`.
+/// Objects that scale cannot hold are traced at their own, as the fast
+/// engine traces them (`LengthScale.layers`): each layer's nearest hit is
+/// compared in the world's units, the scene's own first.
 ///
 /// It computes in Double, the precision of the scene as read: a Float
 /// render's records hold Double values rounded once, which no Float model
@@ -52,30 +55,45 @@ public enum CourseEngine {
     let camera: PerspectiveCamera<Double>
     let scene: Scene
     /// The scene's group with its transforms applied, its lengths scaled
-    /// by 1 / `lengthScale`.
-    let world: Group<Double>
-    /// The eye, scaled as `world` is: where rays start.
-    let origin: Vector3<Double>
-    /// 2^k, 1 for every scene within Double's comfortable range.
-    let lengthScale: Double
+    /// by 1 / `lengthScale`; then any objects traced at their own scale.
+    let layers: [Layer]
     let materials: [Material<Double>]
     let textures: [Texture?]
     let settings: RenderSettings
     let aspect: Double
 
+    /// Objects traced at one scale.
+    struct Layer: Sendable {
+      let world: Group<Double>
+      /// The eye, scaled as `world` is: where rays start.
+      let origin: Vector3<Double>
+      /// 2^k, 1 for every scene within Double's comfortable range.
+      let lengthScale: Double
+
+      init(_ world: Group<Double>, eye: Vector3<Double>, exponent: Int) {
+        let factor = LengthScale.factor(-exponent)
+        self.world = exponent == 0 ? world : world.scaled(by: factor)
+        origin = exponent == 0 ? eye : eye * factor
+        lengthScale = LengthScale.factor(exponent)
+      }
+    }
+
     init(_ scene: Scene, textures: [Texture?], settings: RenderSettings) {
       camera = scene.camera.styled(settings.style)
       self.scene = scene
-      let exponent = LengthScale.exponent(
+      let eye = camera.center
+      let split = LengthScale.layers(
         scene.root.flattened(), eye: scene.camera.center, as: Double.self)
-      lengthScale = LengthScale.factor(exponent)
-      if exponent == 0 {
-        world = scene.root.placed()
-        origin = camera.center
+      if split.others.isEmpty {
+        layers = [
+          Layer(scene.root.placed(), eye: eye, exponent: split.exponent)
+        ]
       } else {
-        let factor = LengthScale.factor(-exponent)
-        world = scene.root.placed().scaled(by: factor)
-        origin = camera.center * factor
+        layers =
+          [Layer(Group(split.main), eye: eye, exponent: split.exponent)]
+          + split.others.map {
+            Layer(Group($0.primitives), eye: eye, exponent: $0.exponent)
+          }
       }
       materials = scene.materials
       self.textures = textures
@@ -83,29 +101,47 @@ public enum CourseEngine {
       aspect = Double(settings.height) / Double(settings.width)
     }
 
-    /// The ray from the eye through the pixel's centre (as the style
-    /// places it).
-    func ray(column: Int, row: Int) -> Ray<Double> {
+    /// The direction from the eye through the pixel's centre (as the
+    /// style places it).
+    func direction(column: Int, row: Int) -> Vector3<Double> {
       let style = settings.style
       let y: Double = style.screenY(row: row, height: settings.height)
       let x: Double = style.screenX(column: column, width: settings.width)
-      let direction = camera.rayDirection(
+      return camera.rayDirection(
         x: x, rowBase: camera.rowBase(y: y, aspect: aspect))
-      return Ray(origin: origin, direction: direction)
     }
 
-    /// The nearest hit of every object in the scene's group.
-    func trace(_ ray: Ray<Double>) -> Hit<Double>? {
-      world.intersect(
-        ray, after: 0, before: .infinity, method: settings.method)
+    /// The nearest hit of every object in the scene's group along
+    /// `direction`, and the length scale its t is in.
+    func trace(_ direction: Vector3<Double>) -> (
+      hit: Hit<Double>, lengthScale: Double
+    )? {
+      var nearest: (hit: Hit<Double>, lengthScale: Double)?
+      for layer in layers {
+        let ray = Ray(origin: layer.origin, direction: direction)
+        guard
+          let hit = layer.world.intersect(
+            ray, after: 0, before: .infinity, method: settings.method)
+        else { continue }
+        if let nearest,
+          nearest.hit.t * nearest.lengthScale <= hit.t * layer.lengthScale
+        {
+          continue
+        }
+        nearest = (hit, layer.lengthScale)
+      }
+      return nearest
     }
 
-    /// The colour seen along `ray`: the background on a miss, else the
-    /// hit's material lit by every light (Phong). A textured material's
-    /// diffuse colour is its texture's texel where the hit has texture
-    /// coordinates.
-    func color(_ ray: Ray<Double>, _ hit: Hit<Double>?) -> RGB<Double> {
-      guard let hit else { return scene.background }
+    /// The colour seen along `direction`: the background on a miss, else
+    /// the hit's material lit by every light (Phong). A textured
+    /// material's diffuse colour is its texture's texel where the hit has
+    /// texture coordinates.
+    func color(
+      _ direction: Vector3<Double>,
+      _ found: (hit: Hit<Double>, lengthScale: Double)?
+    ) -> RGB<Double> {
+      guard let (hit, lengthScale) = found else { return scene.background }
       var material = materials[hit.materialIndex]
       if !textures.isEmpty, let texture = textures[hit.materialIndex],
         let coordinate = hit.textureCoordinate
@@ -113,32 +149,32 @@ public enum CourseEngine {
         material.diffuse = texture.color(at: coordinate)
       }
       return material.shade(
-        point: camera.center + ray.direction * (hit.t * lengthScale),
+        point: camera.center + direction * (hit.t * lengthScale),
         normal: hit.normal,
-        viewDirection: ray.direction, ambient: scene.ambient,
+        viewDirection: direction, ambient: scene.ambient,
         lights: scene.lights, attenuate: settings.style == .mit)
     }
 
     func render(column: Int, row: Int, into pixels: Pixels) {
       let pixel = row * settings.width + column
-      let ray = ray(column: column, row: row)
-      let hit = trace(ray)
+      let direction = direction(column: column, row: row)
+      let found = trace(direction)
       if !pixels.depth.isEmpty {
-        pixels.depth[pixel] = hit.map { $0.t * lengthScale } ?? .infinity
+        pixels.depth[pixel] =
+          found.map { $0.hit.t * $0.lengthScale } ?? .infinity
       }
       if !pixels.normals.isEmpty {
-        pixels.normals[pixel] = hit?.normal ?? .zero
+        pixels.normals[pixel] = found?.hit.normal ?? .zero
       }
       guard !pixels.color.isEmpty else { return }
       guard settings.samples > 1 else {
-        pixels.color[pixel] = color(ray, hit)
+        pixels.color[pixel] = color(direction, found)
         return
       }
       var sum = RGB<Double>.zero
       var samples = PixelSamples(
         column: column, row: row, camera: camera, settings: settings)
-      while let direction = samples.next() {
-        let sample = Ray(origin: origin, direction: direction)
+      while let sample = samples.next() {
         sum += color(sample, trace(sample))
       }
       pixels.color[pixel] = sum / Double(samples.count)

@@ -245,8 +245,8 @@ final class CommandLineTests: XCTestCase {
     XCTAssertEqual(
       outcome.stderr,
       "\(scene): error: a sphere of radius 1e-25 (centre 0.0 0.0 0.0) is too "
-        + "small beside the scene's largest length, 10.0, for float: its "
-        + "squares leave the range at any common scale; use "
+        + "small beside its coordinates and the eye's (up to 10.0) for "
+        + "float: its squares leave the range at any scale; use "
         + "--precision double\n")
     XCTAssertFalse(files().contains("out.png"))
   }

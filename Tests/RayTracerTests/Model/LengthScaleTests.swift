@@ -98,8 +98,8 @@ final class LengthScaleTests: XCTestCase {
     XCTAssertEqual(
       LengthScale.problem(scene(1e-25), precision: .float),
       "a sphere of radius 1e-25 (centre 0.0 0.0 0.0) is too small beside "
-        + "the scene's largest length, 3.0, for float: its squares leave "
-        + "the range at any common scale; use --precision double")
+        + "its coordinates and the eye's (up to 3.0) for float: its squares "
+        + "leave the range at any scale; use --precision double")
     XCTAssertNil(LengthScale.problem(scene(1e-25), precision: .double))
     XCTAssertNil(LengthScale.problem(scene(1e-15), precision: .float))
     XCTAssertNotNil(LengthScale.problem(scene(1e-160), precision: .double))
@@ -109,11 +109,12 @@ final class LengthScaleTests: XCTestCase {
     XCTAssertNil(LengthScale.problem(small, precision: .float))
   }
 
-  /// A triangle or ellipsoid whose squares leave the precision at the
-  /// scene's common scale is named, as a sphere is: a speck of 1e-20 near
-  /// the eye beside a sphere 1e21 away (Float's squares hold 2^±126), and
-  /// one of 1e-25 three units away. Each alone, or in Double, is drawn
-  /// (its own scale brings it near 1).
+  /// A triangle or ellipsoid too small beside its own distance from the
+  /// eye for the precision's squares is named, as a sphere is: one of
+  /// 1e-25 three units away in Float. One that only the scene's common
+  /// scale cannot hold (a speck of 1e-20 by the eye beside a sphere 1e21
+  /// away; Float's squares hold 2^±126) is not: it is traced at its own
+  /// scale (`LengthScale.layers`, which puts it in a layer of its own).
   func testProblem_TriangleAndEllipsoidTooSmallBesideTheScene() throws {
     let camera = try XCTUnwrap(
       PerspectiveCamera(
@@ -125,9 +126,9 @@ final class LengthScaleTests: XCTestCase {
           Vector3(-size, -size, z), Vector3(size, -size, z),
           Vector3(0, size, z), materialIndex: 0))
     }
-    func ellipsoid(_ size: Double, at z: Double) -> SceneObject<Double> {
+    func ellipsoid(_ size: Double, at z: Double) throws -> SceneObject<Double> {
       .transform(
-        try! XCTUnwrap(
+        try XCTUnwrap(
           Transform(
             matrix: .translation(Vector3(0, 0, z))
               * .scale(Vector3(size, 2 * size, size)),
@@ -138,26 +139,39 @@ final class LengthScaleTests: XCTestCase {
     func scene(_ objects: SceneObject<Double>...) -> Scene {
       Scene(camera: camera, root: Group(objects))
     }
-    let speck = triangle(1e-20, at: -3e-20)
     XCTAssertEqual(
-      LengthScale.problem(scene(speck, far), precision: .float),
-      "a triangle (vertices -1e-20 -1e-20 -3e-20, 1e-20 -1e-20 -3e-20, "
-        + "0.0 1e-20 -3e-20) is too small beside the scene's largest "
-        + "length, 3e+21, for float: its squares leave the range at any "
-        + "common scale; use --precision double")
-    XCTAssertNil(LengthScale.problem(scene(speck), precision: .float))
-    XCTAssertNil(LengthScale.problem(scene(speck, far), precision: .double))
-    XCTAssertNotNil(
       LengthScale.problem(
-        scene(triangle(1e-25, at: -3)), precision: .float))
+        scene(far, triangle(1e-25, at: -3)), precision: .float),
+      "a triangle (vertices -1e-25 -1e-25 -3.0, 1e-25 -1e-25 -3.0, 0.0 "
+        + "1e-25 -3.0) is too small beside its coordinates and the eye's (up "
+        + "to 3.0) for float: its squares leave the range at any scale; use "
+        + "--precision double")
+    XCTAssertNil(
+      LengthScale.problem(
+        scene(triangle(1e-25, at: -3)), precision: .double))
     XCTAssertNil(
       LengthScale.problem(
         scene(triangle(1e-15, at: -3)), precision: .float))
-    let small = ellipsoid(1e-20, at: -3e-20)
     XCTAssertNotNil(
-      LengthScale.problem(scene(small, far), precision: .float))
-    XCTAssertNil(LengthScale.problem(scene(small), precision: .float))
-    XCTAssertNil(LengthScale.problem(scene(small, far), precision: .double))
+      LengthScale.problem(
+        scene(try ellipsoid(1e-25, at: -3)), precision: .float))
+    XCTAssertNil(
+      LengthScale.problem(
+        scene(try ellipsoid(1e-15, at: -3)), precision: .float))
+    // Specks the common scale cannot hold: drawn, each in a layer.
+    let specks = scene(
+      triangle(1e-20, at: -3e-20), try ellipsoid(1e-20, at: -3e-20), far)
+    XCTAssertNil(LengthScale.problem(specks, precision: .float))
+    let split = LengthScale.layers(
+      specks.root.flattened(), eye: .zero, as: Float.self)
+    XCTAssertEqual(split.main.spheres.count, 1)
+    XCTAssertEqual(split.main.triangles.count, 0)
+    XCTAssertEqual(split.others.count, 1)
+    XCTAssertEqual(split.others.first?.primitives.triangles.count, 1)
+    XCTAssertEqual(split.others.first?.primitives.transformedSpheres.count, 1)
+    XCTAssertEqual(
+      LengthScale.layers(specks.root.flattened(), eye: .zero, as: Double.self)
+        .others.count, 0, "Double holds both at one scale")
   }
 
   // MARK: - The searches at extreme scales

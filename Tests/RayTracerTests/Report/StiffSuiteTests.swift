@@ -30,8 +30,15 @@ import XCTest
 ///   inverse square root, so rounding c and the ray once moves t by more.
 ///   Off silhouettes (`maxInteriorRelativeError`) they hold 4 ε (measured
 ///   1.5 ε).
+/// - specks beside a planet (`specks-and-planet-1e21`, `-1e201`, traced
+///   in layers at two scales, `LengthScale.layers`): the planet is a
+///   sphere seen whole from 3.3 radii, as the unit spheres are, and its
+///   limb passes nearer a pixel centre: ≤ 16 ε on silhouette pixels
+///   (measured 8.4 ε), 4 ε off them; the two references themselves differ
+///   there by up to 22.6·2⁻⁶⁴, held to 32·2⁻⁶⁴.
 ///
-/// Double-only scenes (`doubleOnly`: unit spheres beyond 1e±30) hold
+/// Double-only scenes (`doubleOnly`: unit spheres beyond 1e±30, specks
+/// of 1e-200 beside a planet of 1e201) hold
 /// numbers Float cannot: reading them for a Float render is an error, so
 /// they are measured in Double only.
 final class StiffSuiteTests: XCTestCase {
@@ -53,16 +60,26 @@ final class StiffSuiteTests: XCTestCase {
       "camera-inside-sphere", "sphere-behind-camera", "camera-on-plane",
       "parallel-plane", "translated-far", "scaled-small", "far-triangle-1e4",
       "ground-triangle", "grazing-triangle", "mesh-translated-1e6",
+      "specks-and-planet-1e21", "specks-and-planet-1e201",
     ] + unitSpheres
 
   static let unitSpheres = [10, 20, 30, 100, 200, 300].flatMap {
     ["unit-sphere-1e\($0)", "unit-sphere-1e-\($0)"]
   }
 
-  /// Scenes whose numbers Float cannot hold.
-  static let doubleOnly = [100, 200, 300].flatMap {
-    ["unit-sphere-1e\($0)", "unit-sphere-1e-\($0)"]
+  static let specks = ["specks-and-planet-1e21", "specks-and-planet-1e201"]
+
+  /// The bound on t's relative error, in ε, on every pixel (silhouettes
+  /// included) for `name`.
+  static func bound(_ name: String) -> Double {
+    unitSpheres.contains(name) ? 8 : specks.contains(name) ? 16 : 4
   }
+
+  /// Scenes whose numbers Float cannot hold.
+  static let doubleOnly =
+    [100, 200, 300].flatMap {
+      ["unit-sphere-1e\($0)", "unit-sphere-1e-\($0)"]
+    } + ["specks-and-planet-1e201"]
 
   func measure<R: RayScalar>(
     _ name: String, _ precision: Precision, _ method: IntersectionMethod,
@@ -88,11 +105,11 @@ final class StiffSuiteTests: XCTestCase {
       let (m, epsilon) = try measure(
         name, precision, .stable, reference: reference)
       let ulps = m.maxRelativeError / epsilon
-      let bound: Double = Self.unitSpheres.contains(name) ? 8 : 4
+      let bound = Self.bound(name)
       XCTAssertLessThanOrEqual(
         ulps, bound,
         "\(name) \(precision): max relative error of t \(ulps) ε > \(bound) ε")
-      if Self.unitSpheres.contains(name) {
+      if bound > 4 {
         let interior = m.maxInteriorRelativeError / epsilon
         XCTAssertLessThanOrEqual(
           interior, 4,
@@ -163,7 +180,9 @@ final class StiffSuiteTests: XCTestCase {
             let difference = Double(
               (DoubleDouble(got) - want).magnitude / want.magnitude)
             let units = difference / 0x1p-64
-            let bound: Double = Self.unitSpheres.contains(name) ? 16 : 8
+            let bound: Double =
+              Self.unitSpheres.contains(name)
+              ? 16 : Self.specks.contains(name) ? 32 : 8
             XCTAssertLessThanOrEqual(
               units, bound,
               "\(name) \(precision) pixel \(pixel): t in 2⁻⁶⁴")

@@ -268,11 +268,15 @@ final class TriangleTilesTests: XCTestCase {
               let direction = camera.rayDirection(x: x, y: y, aspect: aspect)
               let ray = WatertightRay(
                 Ray(origin: compiled.rayOrigin, direction: direction))
-              let hit =
-                plane.map {
-                  record.intersect(ray, plane: $0, before: .infinity)
-                } ?? record.intersect(ray, before: .infinity)
-              guard hit != nil else { continue }
+              let t: Kernel.Scalar? =
+                if let plane {
+                  withUnsafePointer(to: record) {
+                    TriangleRecord.t(ray, $0, plane: plane, before: .infinity)
+                  }
+                } else {
+                  record.intersect(ray, before: .infinity)?.t
+                }
+              guard t != nil else { continue }
               let inside =
                 !box.isEmpty && box.columns.contains(column)
                 && box.rows.contains(row)
