@@ -212,7 +212,9 @@ write("mesh-translated-1e6.txt", "A triangle mesh translated by 1e6 along every 
 # Specks a few of their sizes from the eye (a sphere, a triangle and an
 # ellipsoid of size s) beside a planet of radius S 3S away: at one common
 # scale the squares of the specks or of the planet leave the precision, so
-# each is traced at its own (LengthScale.layers). The second is double only.
+# each is traced at its own (LengthScale.layers). A wall at x = 0.8s (a
+# plane, traced at the planet's scale) hides the ellipsoid and part of the
+# planet, so hits are compared across scales. The second is double only.
 for small, large in ((1e-20, 1e21), (1e-200, 1e201)):
     s, S = small, large
     name = "specks-and-planet-1e%d" % round(math.log10(large))
@@ -229,4 +231,5 @@ for small, large in ((1e-20, 1e21), (1e-200, 1e201)):
                    "MaterialIndex 0",
                    "Transform { Translate %r %r %r Scale %r %r %r Sphere { center 0 0 0 radius 1 } }"
                    % (1.2 * s, 0.5 * s, -3 * s, 0.3 * s, 0.5 * s, 0.3 * s),
-                   "MaterialIndex 2", sphere((0.05 * S, -1.2 * S, -3 * S), S)]))
+                   "MaterialIndex 2", sphere((0.05 * S, -1.2 * S, -3 * S), S),
+                   "MaterialIndex 1", plane((1, 0, 0), 0.8 * s)]))

@@ -5,9 +5,8 @@
 extension LengthScale {
   /// A scene's primitives grouped by the scale each is traced at.
   public struct Layers {
-    /// What the scene's common scale 2^−`exponent` holds: every plane, and
-    /// every other primitive whose squares stay normal there
-    /// (`tooSmall`). All of the scene, for every scene the project had
+    /// What the scene's common scale 2^−`exponent` holds: every primitive
+    /// whose squares and distances stay normal there (`tooSmall`). All of the scene, for every scene the project had
     /// before, which therefore runs as before.
     public var main: Primitives<Double>
     public var exponent: Int
@@ -36,7 +35,6 @@ extension LengthScale {
       return Layers(main: all, exponent: exponent, others: [])
     }
     var main = Primitives<Double>()
-    main.planes = all.planes
     var others: [Int: Primitives<Double>] = [:]
     /// The scale the primitive is traced at: the scene's when it fits
     /// there, else its own.
@@ -61,6 +59,9 @@ extension LengthScale {
     }
     for sphere in all.spheres {
       place(.sphere(sphere)) { $0.spheres.append(sphere) }
+    }
+    for plane in all.planes {
+      place(.plane(plane)) { $0.planes.append(plane) }
     }
     for triangle in all.triangles {
       place(.triangle(triangle)) { $0.triangles.append(triangle) }

@@ -10,7 +10,7 @@ extension LengthScale {
   /// from the eye where that is below 1, does (its edge functions and their
   /// sum weighted by depth, `TriangleIntersection`); an ellipsoid whose
   /// shortest axis squared does (its local ray's direction, M⁻¹·d, would
-  /// overflow). Objects that fail only at the scene's common scale are
+  /// overflow); a plane whose distance from the eye does (t = k / n·d). Objects that fail only at the scene's common scale are
   /// traced at their own (`layers`); these fail at their own too, and the
   /// command line refuses the scene rather than draw them wrong.
   public static func problem(_ scene: Scene, precision: Precision)
@@ -54,7 +54,8 @@ extension LengthScale {
   /// The scene's largest length and, per kind, the smallest of the
   /// measures `tooSmall` compares at a scale f: a radius squared (f²), a
   /// triangle's longest edge squared (f²) and that times its reach (f³),
-  /// an ellipsoid's shortest axis squared (f²). Some primitive fails at
+  /// an ellipsoid's shortest axis squared (f²), a plane's distance from
+  /// the eye (f). Some primitive fails at
   /// f exactly when one of these minima does.
   struct Extent {
     let eye: Vector3<Double>
@@ -63,6 +64,7 @@ extension LengthScale {
     var edgeSquared = Double.infinity
     var edgeSquaredReach = Double.infinity
     var axisSquared = Double.infinity
+    var planeDistance = Double.infinity
 
     init(eye: Vector3<Double>) {
       self.eye = eye
@@ -72,8 +74,7 @@ extension LengthScale {
     mutating func measure(_ object: SceneObject<Double>) {
       switch object {
       case .sphere(let sphere): add(sphere)
-      case .plane(let plane):
-        largest = Swift.max(largest, plane.offset.magnitude)
+      case .plane(let plane): add(plane)
       case .triangle(let triangle): add(triangle)
       case .group(let group):
         for child in group.objects { measure(child) }
@@ -84,15 +85,19 @@ extension LengthScale {
     /// Every primitive of `all`.
     mutating func add(_ all: Primitives<Double>) {
       for sphere in all.spheres { add(sphere) }
-      for plane in all.planes {
-        largest = Swift.max(largest, plane.offset.magnitude)
-      }
+      for plane in all.planes { add(plane) }
       for triangle in all.triangles { add(triangle) }
       for ellipsoid in all.transformedSpheres {
         largest = Swift.max(largest, ellipsoid.largestLength)
         let axis = ellipsoid.shortestAxis
         axisSquared = Swift.min(axisSquared, axis * axis)
       }
+    }
+
+    mutating func add(_ plane: Plane<Double>) {
+      largest = Swift.max(largest, plane.offset.magnitude)
+      let distance = LengthScale.distance(plane, eye: eye)
+      if distance > 0 { planeDistance = Swift.min(planeDistance, distance) }
     }
 
     mutating func add(_ sphere: Sphere<Double>) {
@@ -116,7 +121,16 @@ extension LengthScale {
       radiusSquared * f * f < smallest || edgeSquared * f * f < smallest
         || edgeSquaredReach * f * f * f < smallest
         || axisSquared * f * f < 4 * smallest
+        || planeDistance * f < smallest
     }
+  }
+
+  /// A plane's distance from the eye, |d − n·eye| (nearly: in Double,
+  /// uncompensated, which is enough to judge its range).
+  static func distance(_ plane: Plane<Double>, eye: Vector3<Double>)
+    -> Double
+  {
+    (plane.offset - plane.normal.dot(eye)).magnitude
   }
 
   /// A triangle's longest edge and the farthest of its vertices from the
@@ -147,7 +161,13 @@ extension LengthScale {
       let c = sphere.center
       return "a sphere of radius \(sphere.radius) (centre \(c.x) \(c.y) "
         + "\(c.z))"
-    case .plane: return nil
+    case .plane(let plane):
+      // t = k / n·d: k, the distance from the eye, must stay normal.
+      let distance = Self.distance(plane, eye: eye)
+      guard distance > 0, distance * scale < smallest else { return nil }
+      let n = plane.normal
+      return "a plane (normal \(n.x) \(n.y) \(n.z), offset "
+        + "\(plane.offset))"
     case .triangle(let triangle):
       let (a, b, c) = (triangle.v0, triangle.v1, triangle.v2)
       let (unscaledEdge, unscaledReach) = edgeAndReach(triangle, eye: eye)
