@@ -6,8 +6,9 @@ extension LengthScale {
   /// A scene's primitives grouped by the scale each is traced at.
   public struct Layers {
     /// What the scene's common scale 2^−`exponent` holds: every primitive
-    /// whose squares and distances stay normal there (`tooSmall`). All of the scene, for every scene the project had
-    /// before, which therefore runs as before.
+    /// whose squares and distances stay normal there (`tooSmall`). All of
+    /// the scene for every scene the project had before, which therefore
+    /// runs as before.
     public var main: Primitives<Double>
     public var exponent: Int
     /// The rest, grouped by their own scale (the k of a scene of the

@@ -10,9 +10,10 @@ extension LengthScale {
   /// from the eye where that is below 1, does (its edge functions and their
   /// sum weighted by depth, `TriangleIntersection`); an ellipsoid whose
   /// shortest axis squared does (its local ray's direction, M⁻¹·d, would
-  /// overflow); a plane whose distance from the eye does (t = k / n·d). Objects that fail only at the scene's common scale are
-  /// traced at their own (`layers`); these fail at their own too, and the
-  /// command line refuses the scene rather than draw them wrong.
+  /// overflow); a plane whose distance from the eye does (t = k / n·d).
+  /// Objects that fail only at the scene's common scale are traced at
+  /// their own (`layers`); these fail at their own too, and the command
+  /// line refuses the scene rather than draw them wrong.
   public static func problem(_ scene: Scene, precision: Precision)
     -> String?
   {
@@ -55,8 +56,8 @@ extension LengthScale {
   /// measures `tooSmall` compares at a scale f: a radius squared (f²), a
   /// triangle's longest edge squared (f²) and that times its reach (f³),
   /// an ellipsoid's shortest axis squared (f²), a plane's distance from
-  /// the eye (f). Some primitive fails at
-  /// f exactly when one of these minima does.
+  /// the eye (f). Some primitive fails at f exactly when one of these
+  /// minima does.
   struct Extent {
     let eye: Vector3<Double>
     var largest: Double
@@ -101,15 +102,12 @@ extension LengthScale {
     }
 
     mutating func add(_ sphere: Sphere<Double>) {
-      largest = Swift.max(
-        largest, sphere.center.maxMagnitude, sphere.radius.magnitude)
+      largest = Swift.max(largest, sphere.largestLength)
       radiusSquared = Swift.min(radiusSquared, sphere.radius * sphere.radius)
     }
 
     mutating func add(_ triangle: Triangle<Double>) {
-      largest = Swift.max(
-        largest, triangle.v0.maxMagnitude, triangle.v1.maxMagnitude,
-        triangle.v2.maxMagnitude)
+      largest = Swift.max(largest, triangle.largestLength)
       let (edge, reach) = LengthScale.edgeAndReach(triangle, eye: eye)
       guard edge > 0 else { return }
       edgeSquared = Swift.min(edgeSquared, edge * edge)

@@ -44,9 +44,9 @@ public enum LengthScale {
   static func largestLength(
     _ all: Primitives<Double>, eye: Vector3<Double>
   ) -> Double {
-    var largest = eye.maxMagnitude
-    all.forEach { largest = Swift.max(largest, $0.largestLength) }
-    return largest
+    var extent = Extent(eye: eye)
+    extent.add(all)
+    return extent.largest
   }
 
   /// The k of `exponent(_:eye:as:)` for a scene whose largest length is
@@ -95,13 +95,9 @@ public enum LengthScale {
     /// and vertices, radii, plane offsets, a transformed sphere's reach.
     var largestLength: Double {
       switch self {
-      case .sphere(let sphere):
-        Swift.max(sphere.center.maxMagnitude, sphere.radius.magnitude)
+      case .sphere(let sphere): sphere.largestLength
       case .plane(let plane): plane.offset.magnitude
-      case .triangle(let triangle):
-        Swift.max(
-          triangle.v0.maxMagnitude, triangle.v1.maxMagnitude,
-          triangle.v2.maxMagnitude)
+      case .triangle(let triangle): triangle.largestLength
       case .ellipsoid(let ellipsoid): ellipsoid.largestLength
       }
     }
@@ -120,6 +116,22 @@ extension Primitives<Double> {
     for plane in planes { body(.plane(plane)) }
     for triangle in triangles { body(.triangle(triangle)) }
     for ellipsoid in transformedSpheres { body(.ellipsoid(ellipsoid)) }
+  }
+}
+
+extension Sphere<Double> {
+  /// The largest length it gives the scene's scale: its centre's
+  /// coordinates and its radius.
+  var largestLength: Double {
+    Swift.max(center.maxMagnitude, radius.magnitude)
+  }
+}
+
+extension Triangle<Double> {
+  /// The largest length it gives the scene's scale: its vertices'
+  /// coordinates.
+  var largestLength: Double {
+    Swift.max(v0.maxMagnitude, v1.maxMagnitude, v2.maxMagnitude)
   }
 }
 

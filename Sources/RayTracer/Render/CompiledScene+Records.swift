@@ -38,9 +38,10 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
 
   /// The t of a triangle much larger than its distance from the eye, for
   /// the record at `record`, read in place: the watertight test decides
-  /// the hit, the plane gives t (`TrianglePlane`). The plane first, which settles most misses (a ground
-  /// triangle's sky) with one product and a division, then the watertight
-  /// test. Both must hold, in either order, so the answer is the same.
+  /// the hit, the plane gives t (`TrianglePlane`). The plane first, which
+  /// settles most misses (a ground triangle's sky) with one product and a
+  /// division, then the watertight test. Both must hold, in either order,
+  /// so the answer is the same.
   @inline(__always)
   static func t(
     _ ray: WatertightRay<Scalar>, _ record: UnsafePointer<TriangleRecord>,

@@ -54,8 +54,9 @@ public enum CourseEngine {
   private struct View: Sendable {
     let camera: PerspectiveCamera<Double>
     let scene: Scene
-    /// The scene's group with its transforms applied, its lengths scaled
-    /// by 1 / `lengthScale`; then any objects traced at their own scale.
+    /// The scene's group with its transforms applied, then any objects
+    /// traced at their own scale (`LengthScale.layers`), each with its
+    /// lengths scaled by 1 / its `lengthScale`.
     let layers: [Layer]
     let materials: [Material<Double>]
     let textures: [Texture?]
