@@ -12,7 +12,9 @@ struct Report: ParsableCommand {
         """,
     discussion: """
       Renders every scene with float and double, naive and stable, times each \
-      (median of --runs renders after a warm-up), compares depth and normals \
+      (the fastest of --rounds medians of --runs renders after a warm-up, \
+      naive and stable in alternation, and stable's time over naive's in the \
+      same precision), compares depth and normals \
       with the reference path (the same camera rays intersected in 80-bit \
       extended precision on x86, in double-double elsewhere; see \
       --reference) and prints a Markdown table. Relative errors are \
@@ -33,8 +35,15 @@ struct Report: ParsableCommand {
     help: ArgumentHelp("Image width and height.", valueName: "w h"))
   var size: [Int] = [400, 400]
 
-  @Option(help: "Timed renders per row, after one warm-up.")
+  @Option(help: "Timed renders per round and row, after one warm-up.")
   var runs: Int = 5
+
+  @Option(
+    help: """
+      Rounds of --runs renders, the methods in alternation; a row's time \
+      is its fastest round's median.
+      """)
+  var rounds: Int = 3
 
   @Option(help: "Worker threads for the timed renders (default: all cores).")
   var threads: Int?
@@ -84,6 +93,9 @@ struct Report: ParsableCommand {
       throw ValidationError("--size takes two values between 1 and 4096.")
     }
     guard runs >= 1 else { throw ValidationError("--runs must be at least 1.") }
+    guard rounds >= 1 else {
+      throw ValidationError("--rounds must be at least 1.")
+    }
     if let threads, threads < 1 {
       throw ValidationError("--threads must be at least 1.")
     }
@@ -129,15 +141,18 @@ struct Report: ParsableCommand {
         }
         // Generic over the reference's scalar, chosen by --reference.
         func measureRows<R: RayScalar>(against reference: RenderBuffers<R>) {
-          for method in IntersectionMethod.allCases {
-            let (buffers, seconds) = AccuracyRender.render(
-              scene, width: width, height: height, precision: precision,
-              method: method, threads: threads, runs: runs)
+          let renders = AccuracyRender.renderMethods(
+            scene, width: width, height: height, precision: precision,
+            threads: threads, runs: runs, rounds: rounds)
+          let naiveSeconds =
+            renders.first { $0.method == .naive }?.seconds ?? .nan
+          for (method, buffers, seconds) in renders {
             let measurement = buffers.measured(against: reference)
             let row = AccuracyRow(
               scene: name, precision: precision, method: method,
               width: width, height: height, seconds: seconds,
-              measurement: measurement, epsilon: buffers.epsilon)
+              naiveSeconds: naiveSeconds, measurement: measurement,
+              epsilon: buffers.epsilon)
             print(row.markdown)
             rows.append(row)
             if let heatmaps {
@@ -262,22 +277,26 @@ struct AccuracyRow {
   var width: Int
   var height: Int
   var seconds: Double
+  /// The naive method's time for the same scene and precision.
+  var naiveSeconds: Double
   var measurement: AccuracyMeasurement
   var epsilon: Double
 
   var megaraysPerSecond: Double { Double(width * height) / seconds / 1e6 }
+  var timeOverNaive: Double { seconds / naiveSeconds }
 
   static let markdownHeader = """
-    | scene | precision | method | time (ms) | Mrays/s \
+    | scene | precision | method | time (ms) | ÷ naive | Mrays/s \
     | max rel. error of t | p99 | max (ε) | max off silhouettes (ε) \
     | hit/miss disagreements | max normal error (°) |
-    |---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|
+    |---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|
     """
 
   var markdown: String {
     let m = measurement
     return "| \(scene) | \(precision.rawValue) | \(method.rawValue) | "
       + "\(formatted(seconds * 1000, digits: 3)) | "
+      + "\(formatted(timeOverNaive, digits: 3)) | "
       + "\(formatted(megaraysPerSecond, digits: 3)) | "
       + "\(scientific(m.maxRelativeError)) | \(scientific(m.p99RelativeError)) "
       + "| "
@@ -288,7 +307,8 @@ struct AccuracyRow {
   }
 
   static let csvHeader =
-    "scene,precision,method,width,height,seconds,mrays_per_s,max_rel_error,"
+    "scene,precision,method,width,height,seconds,time_over_naive,"
+    + "mrays_per_s,max_rel_error,"
     + "p99_rel_error,max_rel_error_eps,max_interior_rel_error_eps,"
     + "disagreements,compared_hits,max_normal_error_deg"
 
@@ -296,7 +316,7 @@ struct AccuracyRow {
     let m = measurement
     return [
       scene, precision.rawValue, method.rawValue, "\(width)", "\(height)",
-      "\(seconds)",
+      "\(seconds)", "\(timeOverNaive)",
       "\(megaraysPerSecond)", "\(m.maxRelativeError)", "\(m.p99RelativeError)",
       "\(m.maxRelativeError / epsilon)",
       "\(m.maxInteriorRelativeError / epsilon)",

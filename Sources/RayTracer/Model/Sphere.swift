@@ -49,7 +49,8 @@ extension Sphere: Intersectable {
           after: tMin, before: tMax)
       else { return nil }
       let normal = SphereIntersection.stableNormal(
-        direction: ray.direction, inverseLengthSquared: inverseA, t: root.t,
+        direction: ray.direction, lengthSquared: a,
+        inverseLengthSquared: inverseA, t: root.t,
         offset: relative.offset, c: relative.c, radiusSquared: radiusSquared,
         inverseRadius: 1 / radius, entering: root.entering)
       return Hit(t: root.t, normal: normal, materialIndex: materialIndex)

@@ -58,18 +58,18 @@ public enum SphereIntersection {
       before: tMax, approach: &approach)
   }
 
-  /// The centre's offset l from the ray's line and r² − |l|², as
-  /// `stableRoot` computes them on its way to a root of a sphere whose
+  /// The centre's offset l from the ray's line and √Δ/2 = √(a·(r² − |l|²)),
+  /// as `stableRoot` computes them on its way to a root of a sphere whose
   /// discriminant cancels (a small far one): the normal's far form
   /// (`stableNormal`) needs exactly these values again.
   public struct ClosestApproach<S: RayScalar>: Sendable {
     public var offset: Vector3<S>
-    public var gap: S
+    public var root: S
 
     @inlinable
-    public init(offset: Vector3<S>, gap: S) {
+    public init(offset: Vector3<S>, root: S) {
       self.offset = offset
-      self.gap = gap
+      self.root = root
     }
   }
 
@@ -84,6 +84,11 @@ public enum SphereIntersection {
     after tMin: S, before tMax: S, approach: inout ClosestApproach<S>?
   ) -> (t: S, entering: Bool)? {
     let s = p.dot(d)
+    // The eye outside (c > 0) and the centre behind it (s < 0): both roots
+    // are negative (their product c/a is positive, their sum 2s/a is not),
+    // and so are both as computed below (q < 0, c > 0), so a search from
+    // tMin ≥ 0 misses without the discriminant.
+    if tMin >= 0 && s < 0 && c > 0 { return nil }
     let ac = a * c
     let sSquared = s * s
     // Δ/4 = s² − ac. Where ac ≤ s²/2 the subtraction loses at most one bit
@@ -95,9 +100,10 @@ public enum SphereIntersection {
     // ac nearly cancel, as for a small far sphere, and a·(r² − |l|²) is the
     // accurate form.
     let quarterDiscriminant: S
-    if ac <= sSquared * 0.5 {
+    var l = Vector3<S>.zero
+    let cancels = ac > sSquared * 0.5
+    if !cancels {
       quarterDiscriminant = sSquared - ac
-      approach = nil
     } else {
       // Most rays miss most spheres, and a clear miss needs no accurate
       // discriminant: both forms are within a few ε·a·|p|² of the truth
@@ -105,13 +111,12 @@ public enum SphereIntersection {
       // answer is the same as the careful form's, for a quarter of its cost.
       let margin = 32 * S.ulpOfOne * a * (c + radiusSquared)
       if sSquared - ac < -margin { return nil }
-      let l = p - d * (s * inverseA)
-      let gap = radiusSquared - l.lengthSquared
-      quarterDiscriminant = a * gap
-      approach = ClosestApproach(offset: l, gap: gap)
+      l = p - d * (s * inverseA)
+      quarterDiscriminant = a * (radiusSquared - l.lengthSquared)
     }
     guard quarterDiscriminant >= 0 else { return nil }
     let root = quarterDiscriminant.squareRoot()
+    approach = cancels ? ClosestApproach(offset: l, root: root) : nil
     let q = s >= 0 ? s + root : s - root
     let viaQuotient = c / q
     let viaScale = q * inverseA
@@ -125,7 +130,10 @@ public enum SphereIntersection {
   /// The outward unit normal at the root t of `stableRoot`, from the centre's
   /// offset from the ray's line rather than from hit point − centre, which
   /// cancels for a small far sphere: hit − centre = ∓√((r² − |l|²)/a)·d − l,
-  /// the sign from `entering`. Which root was hit is passed in rather than
+  /// the sign from `entering`, with √((r² − |l|²)/a) taken as
+  /// √(a·(r² − |l|²))/a from the root's own square root (the far form of
+  /// `stableRoot` computes it), which saves a square root on every far hit:
+  /// within 2 ε of the direct form, far below l's own error there. Which root was hit is passed in rather than
   /// found by comparing t with s/a: for a sphere 10⁸ radii away in Float the
   /// two roots round to the same t, and the comparison would flip the normal.
   ///
@@ -136,15 +144,15 @@ public enum SphereIntersection {
   /// This saves a square root and a division on every hit.
   @inlinable @inline(__always)
   public static func stableNormal<S: RayScalar>(
-    direction d: Vector3<S>, inverseLengthSquared inverseA: S,
+    direction d: Vector3<S>, lengthSquared a: S, inverseLengthSquared inverseA: S,
     offset p: Vector3<S>, radiusSquared: S, inverseRadius: S, entering: Bool
   ) -> Vector3<S> {
     let s = p.dot(d)
     let l = p - d * (s * inverseA)
+    let gap = Swift.max(radiusSquared - l.lengthSquared, 0)
     return stableNormal(
       direction: d, inverseLengthSquared: inverseA,
-      approach: ClosestApproach(
-        offset: l, gap: radiusSquared - l.lengthSquared),
+      approach: ClosestApproach(offset: l, root: (a * gap).squareRoot()),
       inverseRadius: inverseRadius, entering: entering)
   }
 
@@ -156,7 +164,9 @@ public enum SphereIntersection {
     approach: ClosestApproach<S>, inverseRadius: S, entering: Bool
   ) -> Vector3<S> {
     let l = approach.offset
-    let along = (Swift.max(approach.gap, 0) * inverseA).squareRoot()
+    // `magnitude`: a discriminant that underflowed to −0 gives the +0 of
+    // the form above.
+    let along = approach.root.magnitude * inverseA
     let side: S = entering ? -1 : 1
     let outward = d * (side * along) - l
     let scaled = outward * inverseRadius
@@ -179,7 +189,8 @@ public enum SphereIntersection {
   /// computing the same l and r² − |l|² a second time.
   @inlinable @inline(__always)
   public static func stableNormal<S: RayScalar>(
-    direction d: Vector3<S>, inverseLengthSquared inverseA: S, t: S,
+    direction d: Vector3<S>, lengthSquared a: S,
+    inverseLengthSquared inverseA: S, t: S,
     offset p: Vector3<S>, c: S, radiusSquared: S, inverseRadius: S,
     entering: Bool, approach: ClosestApproach<S>? = nil
   ) -> Vector3<S> {
@@ -196,8 +207,8 @@ public enum SphereIntersection {
         inverseRadius: inverseRadius, entering: entering)
     }
     return stableNormal(
-      direction: d, inverseLengthSquared: inverseA, offset: p,
-      radiusSquared: radiusSquared, inverseRadius: inverseRadius,
+      direction: d, lengthSquared: a, inverseLengthSquared: inverseA,
+      offset: p, radiusSquared: radiusSquared, inverseRadius: inverseRadius,
       entering: entering)
   }
 

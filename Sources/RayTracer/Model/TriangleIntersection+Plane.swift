@@ -95,9 +95,19 @@ public enum TrianglePlane {
     normal n: Vector3<S>, distance k: S, direction d: Vector3<S>,
     after tMin: S, before tMax: S
   ) -> S? {
+    t(
+      normal: n, distance: k, isAxisAligned: PlaneIntersection.isAxisAligned(n),
+      direction: d, after: tMin, before: tMax)
+  }
+
+  /// `t`, with `PlaneIntersection.isAxisAligned(n)` found beforehand.
+  @inlinable @inline(__always)
+  public static func t<S: RayScalar>(
+    normal n: Vector3<S>, distance k: S, isAxisAligned: Bool,
+    direction d: Vector3<S>, after tMin: S, before tMax: S
+  ) -> S? {
     PlaneIntersection.stableT(
-      normal: n, normalTail: .zero, distance: k,
-      isAxisAligned: PlaneIntersection.isAxisAligned(n), direction: d,
-      after: tMin, before: tMax)
+      normal: n, normalTail: .zero, distance: k, isAxisAligned: isAxisAligned,
+      direction: d, after: tMin, before: tMax)
   }
 }

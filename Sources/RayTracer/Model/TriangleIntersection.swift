@@ -47,11 +47,48 @@ public enum TriangleIntersection {
   ///   TriangleTests for the measured bound). The barycentrics carry an
   ///   absolute error of a few ε times (distance from the origin / size of
   ///   the triangle): the shear subtracts nearly equal numbers.
-  @inlinable
+  @inlinable @inline(__always)
   public static func intersect<S: RayScalar>(
     _ ray: WatertightRay<S>, _ v0: Vector3<S>, _ v1: Vector3<S>,
     _ v2: Vector3<S>, after tMin: S, before tMax: S
   ) -> (t: S, u: S, v: S, w: S)? {
+    guard let edges = edgeFunctions(ray, v0, v1, v2) else { return nil }
+    let (u, v, w) = (edges.u, edges.v, edges.w)
+    let determinant = u + v + w
+    guard determinant != 0 else { return nil }
+    let scaledT =
+      u * (ray.shearZ * edges.az) + v * (ray.shearZ * edges.bz)
+      + w * (ray.shearZ * edges.cz)
+    let t = scaledT / determinant
+    guard t > tMin && t < tMax else { return nil }
+    let inverse = 1 / determinant
+    return (t, u * inverse, v * inverse, w * inverse)
+  }
+
+  /// Whether the ray's line passes through the triangle as `intersect`
+  /// decides it, without t: the edge functions agree in sign and their sum
+  /// is not zero. The same answer as `intersect(…, after: −∞, before: ∞)`
+  /// wherever that t cannot overflow or be NaN (for finite vertices and
+  /// direction, once the products of the test stay finite); the fast
+  /// engine's large triangles, which take t from their plane, use it where
+  /// that holds (`LargeTrianglePlane.edgesDecide`).
+  @inlinable @inline(__always)
+  public static func covers<S: RayScalar>(
+    _ ray: WatertightRay<S>, _ v0: Vector3<S>, _ v1: Vector3<S>,
+    _ v2: Vector3<S>
+  ) -> Bool {
+    guard let edges = edgeFunctions(ray, v0, v1, v2) else { return false }
+    return edges.u + edges.v + edges.w != 0
+  }
+
+  /// The edge functions u, v, w of the vertices sheared into the ray's
+  /// frame and the vertices' z there, or nil when the signs of u, v, w
+  /// disagree (the ray passes outside).
+  @inlinable @inline(__always)
+  static func edgeFunctions<S: RayScalar>(
+    _ ray: WatertightRay<S>, _ v0: Vector3<S>, _ v1: Vector3<S>,
+    _ v2: Vector3<S>
+  ) -> (u: S, v: S, w: S, az: S, bz: S, cz: S)? {
     // The vertices relative to the origin, in the permuted frame.
     let a = v0 - ray.origin
     let b = v1 - ray.origin
@@ -76,16 +113,9 @@ public enum TriangleIntersection {
       (u, v, w) = exactEdgeFunctions(ax, ay, bx, by, cx, cy)
     }
     // Inside (or on the boundary) when no two signs disagree; NaNs (a zero
-    // or non-finite direction) pass here and fail the t test below.
+    // or non-finite direction) pass here and fail the t test.
     if (u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0) { return nil }
-    let determinant = u + v + w
-    guard determinant != 0 else { return nil }
-    let scaledT =
-      u * (ray.shearZ * az) + v * (ray.shearZ * bz) + w * (ray.shearZ * cz)
-    let t = scaledT / determinant
-    guard t > tMin && t < tMax else { return nil }
-    let inverse = 1 / determinant
-    return (t, u * inverse, v * inverse, w * inverse)
+    return (u, v, w, az, bz, cz)
   }
 
   /// The three edge functions with each product exact, for when one of them
@@ -150,7 +180,7 @@ public struct WatertightRay<S: RayScalar>: Hashable, Sendable {
   public var shearY: S
   public var shearZ: S
 
-  @inlinable
+  @inlinable @inline(__always)
   public init(_ ray: Ray<S>) {
     let d = ray.direction
     let x = d.x.magnitude

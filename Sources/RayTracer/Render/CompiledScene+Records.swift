@@ -40,23 +40,29 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
   /// the record at `record`, read in place: the watertight test decides
   /// the hit, the plane gives t (`TrianglePlane`). The plane first, which
   /// settles most misses (a ground triangle's sky) with one product and a
-  /// division, then the watertight test. Both must hold, in either order,
-  /// so the answer is the same.
+  /// division, then the watertight test, by its edges alone where they
+  /// decide it (`LargeTrianglePlane.edgesDecide`). Both must hold, in
+  /// either order, so the answer is the same.
   @inline(__always)
   static func t(
     _ ray: WatertightRay<Scalar>, _ record: UnsafePointer<TriangleRecord>,
-    plane: (normal: Vector3<Scalar>, distance: Scalar),
-    before tMax: Scalar
+    plane: LargeTrianglePlane<Scalar>, before tMax: Scalar
   ) -> Scalar? {
     guard
       let t = TrianglePlane.t(
         normal: plane.normal, distance: plane.distance,
-        direction: ray.direction, after: 0, before: tMax),
-      TriangleIntersection.intersect(
-        ray, record.pointee.v0, record.pointee.v1, record.pointee.v2,
-        after: -.infinity, before: .infinity) != nil
+        isAxisAligned: plane.isAxisAligned, direction: ray.direction,
+        after: 0, before: tMax)
     else { return nil }
-    return t
+    let (v0, v1, v2) = (
+      record.pointee.v0, record.pointee.v1, record.pointee.v2
+    )
+    let covered =
+      plane.edgesDecide
+      ? TriangleIntersection.covers(ray, v0, v1, v2)
+      : TriangleIntersection.intersect(
+        ray, v0, v1, v2, after: -.infinity, before: .infinity) != nil
+    return covered ? t : nil
   }
 
   /// The normal where `ray` hits: the barycentrics are found again (the

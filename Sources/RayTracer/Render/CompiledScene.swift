@@ -42,7 +42,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// from `trianglePlanes` (`TrianglePlane`).
   var ordinaryTriangleCount = 0
   /// Per large triangle, in order, its plane seen from the eye.
-  var trianglePlanes: [(normal: Vector3<Scalar>, distance: Scalar)] = []
+  var trianglePlanes: [LargeTrianglePlane<Scalar>] = []
   /// Triangles left in order for `ScreenTiles` to project, without a
   /// hierarchy (see `triangleProjectionThreshold`).
   internal(set) var projectsTriangles = false
@@ -233,7 +233,12 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
           relative: (record.v0, record.v1, record.v2), normal: normal,
           v0: triangle.v0, origin: eye)
       {
-        large.append((record, triangle, plane))
+        large.append(
+          (
+            record, triangle,
+            LargeTrianglePlane(
+              plane, relative: (record.v0, record.v1, record.v2))
+          ))
         continue
       }
       appendTriangle(record, triangle)

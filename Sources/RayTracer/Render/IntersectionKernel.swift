@@ -235,8 +235,9 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
     memo: SphereIntersection.ClosestApproach<Scalar>?
   ) -> Vector3<Scalar> {
     SphereIntersection.stableNormal(
-      direction: ray.direction, inverseLengthSquared: ray.inverseLengthSquared,
-      t: t, offset: record.offset, c: record.c,
+      direction: ray.direction, lengthSquared: ray.lengthSquared,
+      inverseLengthSquared: ray.inverseLengthSquared, t: t,
+      offset: record.offset, c: record.c,
       radiusSquared: record.radiusSquared, inverseRadius: record.inverseRadius,
       entering: record.c > 0, approach: memo)
   }

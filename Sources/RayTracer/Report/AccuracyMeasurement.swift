@@ -123,42 +123,81 @@ public enum AccuracyRender {
     method: IntersectionMethod, style: ImageStyle = .course, threads: Int = 1,
     runs: Int = 1
   ) -> (buffers: AnyRenderBuffers, medianSeconds: Double) {
+    let render = prepared(
+      scene, width: width, height: height, precision: precision,
+      method: method, style: style, threads: threads)
+    guard runs > 0 else { return (render.buffers, .nan) }
+    return (render.buffers, median((0..<runs).map { _ in render.time() }))
+  }
+
+  /// Depth and normals of `scene` by each method in `precision`, timed in
+  /// alternation: `rounds` rounds, each the median of `runs` renders with
+  /// every method in turn, and each method's time the fastest of its
+  /// rounds' medians. Both methods meet the same load on a shared
+  /// machine, and the minimum leaves out rounds another process disturbed,
+  /// so their ratio is steadier than that of two single medians
+  /// (`raytrace report`'s "÷ naive" column).
+  public static func renderMethods(
+    _ scene: Scene, width: Int, height: Int, precision: Precision,
+    threads: Int = 1, runs: Int = 1, rounds: Int = 1
+  ) -> [(method: IntersectionMethod, buffers: AnyRenderBuffers, seconds: Double)]
+  {
+    let renders = IntersectionMethod.allCases.map {
+      prepared(
+        scene, width: width, height: height, precision: precision, method: $0,
+        threads: threads)
+    }
+    var fastest = [Double](repeating: .infinity, count: renders.count)
+    for _ in 0..<rounds {
+      for (index, render) in renders.enumerated() {
+        let seconds = median((0..<runs).map { _ in render.time() })
+        fastest[index] = Swift.min(fastest[index], seconds)
+      }
+    }
+    return IntersectionMethod.allCases.indices.map {
+      (IntersectionMethod.allCases[$0], renders[$0].buffers, fastest[$0])
+    }
+  }
+
+  /// A compiled scene's first render (a warm-up, whose buffers are every
+  /// render's: the renderer is deterministic) and the timer of one more.
+  /// Compiling the scene is not timed.
+  private struct TimedRender {
+    var buffers: AnyRenderBuffers
+    var time: () -> Double
+  }
+
+  private static func prepared(
+    _ scene: Scene, width: Int, height: Int, precision: Precision,
+    method: IntersectionMethod, style: ImageStyle = .course, threads: Int
+  ) -> TimedRender {
     let settings = RenderSettings(
       width: width, height: height, outputs: [.depth, .normals], style: style,
       method: method, precision: precision, threads: threads)
     switch (precision, method) {
     case (.float, .naive):
-      let (buffers, time) = timed(
-        NaiveKernel<Float>.self, scene, settings, runs)
-      return (.float(buffers), time)
+      return prepared(NaiveKernel<Float>.self, scene, settings, AnyRenderBuffers.float)
     case (.float, .stable):
-      let (buffers, time) = timed(
-        StableKernel<Float>.self, scene, settings, runs)
-      return (.float(buffers), time)
+      return prepared(StableKernel<Float>.self, scene, settings, AnyRenderBuffers.float)
     case (.double, .naive):
-      let (buffers, time) = timed(
-        NaiveKernel<Double>.self, scene, settings, runs)
-      return (.double(buffers), time)
+      return prepared(NaiveKernel<Double>.self, scene, settings, AnyRenderBuffers.double)
     case (.double, .stable):
-      let (buffers, time) = timed(
-        StableKernel<Double>.self, scene, settings, runs)
-      return (.double(buffers), time)
+      return prepared(StableKernel<Double>.self, scene, settings, AnyRenderBuffers.double)
     }
   }
 
-  private static func timed<Kernel: IntersectionKernel>(
-    _: Kernel.Type, _ scene: Scene, _ settings: RenderSettings, _ runs: Int
-  ) -> (RenderBuffers<Kernel.Scalar>, Double) {
+  private static func prepared<Kernel: IntersectionKernel>(
+    _: Kernel.Type, _ scene: Scene, _ settings: RenderSettings,
+    _ wrap: (RenderBuffers<Kernel.Scalar>) -> AnyRenderBuffers
+  ) -> TimedRender {
     let compiled = CompiledScene<Kernel>(scene)
-    var buffers = Renderer.render(compiled, settings: settings)
-    guard runs > 0 else { return (buffers, .nan) }
-    var times: [Double] = []
-    for _ in 0..<runs {
+    return TimedRender(
+      buffers: wrap(Renderer.render(compiled, settings: settings))
+    ) {
       var clock = Stopwatch()
-      buffers = Renderer.render(compiled, settings: settings)
-      times.append(clock.lap())
+      _ = Renderer.render(compiled, settings: settings)
+      return clock.lap()
     }
-    return (buffers, median(times))
   }
 
   /// The reference for renders in `precision`: the same camera rays,

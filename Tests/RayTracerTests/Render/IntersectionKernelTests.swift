@@ -61,6 +61,6 @@ final class IntersectionKernelTests: XCTestCase {
 
 extension SphereIntersection.ClosestApproach: Equatable {
   public static func == (a: Self, b: Self) -> Bool {
-    a.offset == b.offset && a.gap == b.gap
+    a.offset == b.offset && a.root == b.root
   }
 }

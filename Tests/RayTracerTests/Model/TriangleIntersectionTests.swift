@@ -1,0 +1,85 @@
+import XCTest
+
+@testable import RayTracer
+
+/// `TriangleIntersection.covers`, the watertight test without its t, and
+/// the bound under which it answers as `intersect` on the whole line does
+/// (`LargeTrianglePlane.edgesDecide`).
+final class TriangleIntersectionTests: XCTestCase {
+  /// Random triangles with vertices up to `extent` from the origin, some
+  /// through it and some beside it, and unit directions: `covers` must
+  /// agree with `intersect(…, after: −∞, before: ∞)` on every one. Both
+  /// answers must occur, so that neither is always true.
+  func checkCoversAgrees<T: RayScalar>(_: T.Type, extent: T) {
+    var generator = SplitMix64(seed: 0x7269_616e_676c_6521)
+    var (covered, missed) = (0, 0)
+    for _ in 0..<20_000 {
+      let scale = generator.logUniform(T(1), extent)
+      func vertex() -> Vector3<T> {
+        Vector3(
+          generator.uniform(-1...1), generator.uniform(-1...1),
+          generator.uniform(-1...1)) * scale
+      }
+      let (v0, v1, v2) = (vertex(), vertex(), vertex())
+      let ray = WatertightRay(
+        Ray(origin: .zero, direction: generator.unitVector(T.self)))
+      let whole = TriangleIntersection.intersect(
+        ray, v0, v1, v2, after: -.infinity, before: .infinity)
+      let covers = TriangleIntersection.covers(ray, v0, v1, v2)
+      XCTAssertEqual(covers, whole != nil, "\(T.self): \(v0) \(v1) \(v2)")
+      if covers { covered += 1 } else { missed += 1 }
+    }
+    XCTAssertGreaterThan(covered, 1000, "\(T.self)")
+    XCTAssertGreaterThan(missed, 1000, "\(T.self)")
+  }
+
+  func testCovers_AgreesWithIntersect_Float() {
+    checkCoversAgrees(Float.self, extent: limit(Float.self))
+  }
+
+  func testCovers_AgreesWithIntersect_Double() {
+    checkCoversAgrees(Double.self, extent: limit(Double.self))
+  }
+
+  /// The largest vertex coordinate for which `LargeTrianglePlane` lets the
+  /// edges decide: 2^39 in float, 2^338 in double.
+  func limit<T: RayScalar>(_: T.Type) -> T {
+    let plane = LargeTrianglePlane<T>(
+      (Vector3(0, 1, 0), 1), relative: (.zero, .zero, .zero))
+    XCTAssertTrue(plane.edgesDecide)
+    return T(
+      sign: .plus, exponent: T.greatestFiniteMagnitude.exponent / 3 - 3,
+      significand: 1)
+  }
+
+  /// At the limit the edges decide; one ulp past it they do not.
+  func checkEdgesDecideLimit<T: RayScalar>(_: T.Type) {
+    let c = limit(T.self)
+    func plane(_ extent: T) -> LargeTrianglePlane<T> {
+      LargeTrianglePlane(
+        (Vector3(0, 1, 0), -1),
+        relative: (Vector3(-extent, -1, 1), Vector3(1, -1, 1), .zero))
+    }
+    XCTAssertTrue(plane(c).edgesDecide, "\(T.self)")
+    XCTAssertFalse(plane(c.nextUp).edgesDecide, "\(T.self)")
+  }
+
+  func testEdgesDecide_Limit_Float() { checkEdgesDecideLimit(Float.self) }
+  func testEdgesDecide_Limit_Double() { checkEdgesDecideLimit(Double.self) }
+
+  /// Why the limit exists: far beyond it the weighted sum of z overflows,
+  /// `intersect` misses (t is not finite) while the edges accept the ray.
+  func testCovers_DiffersWhereTOverflows() {
+    let big = Float.greatestFiniteMagnitude / 4
+    let (v0, v1, v2) = (
+      Vector3<Float>(-big, -big, big), Vector3<Float>(big, -big, big),
+      Vector3<Float>(0, big, big)
+    )
+    let ray = WatertightRay(
+      Ray(origin: .zero, direction: Vector3<Float>(0, 0, 1)))
+    XCTAssertTrue(TriangleIntersection.covers(ray, v0, v1, v2))
+    XCTAssertNil(
+      TriangleIntersection.intersect(
+        ray, v0, v1, v2, after: -.infinity, before: .infinity))
+  }
+}
