@@ -131,32 +131,34 @@ public enum AccuracyRender {
   }
 
   /// Depth and normals of `scene` by each method in `precision`, timed in
-  /// alternation: `rounds` rounds, each the median of `runs` renders with
-  /// every method in turn, and each method's time the fastest of its
-  /// rounds' medians. Both methods meet the same load on a shared
-  /// machine, and the minimum leaves out rounds another process disturbed,
-  /// so their ratio is steadier than that of two single medians
-  /// (`raytrace report`'s "÷ naive" column).
+  /// alternation: `rounds` rounds, each compiling the scene afresh for
+  /// every method in turn and taking the median of `runs` renders, and
+  /// each method's time the fastest of its rounds' medians. Both methods
+  /// meet the same load on a shared machine, and the minimum leaves out
+  /// rounds another process disturbed, or whose compiled scene and
+  /// buffers landed where they run slowly (seen here: a whole round of
+  /// one method 20% slower, and the next compile of it not), so their
+  /// ratio is steadier than that of two single medians (`raytrace
+  /// report`'s "÷ naive" column).
   public static func renderMethods(
     _ scene: Scene, width: Int, height: Int, precision: Precision,
     threads: Int = 1, runs: Int = 1, rounds: Int = 1
   ) -> [(method: IntersectionMethod, buffers: AnyRenderBuffers, seconds: Double)]
   {
-    let renders = IntersectionMethod.allCases.map {
-      prepared(
-        scene, width: width, height: height, precision: precision, method: $0,
-        threads: threads)
-    }
-    var fastest = [Double](repeating: .infinity, count: renders.count)
+    let methods = IntersectionMethod.allCases
+    var buffers: [AnyRenderBuffers?] = Array(repeating: nil, count: methods.count)
+    var fastest = [Double](repeating: .infinity, count: methods.count)
     for _ in 0..<rounds {
-      for (index, render) in renders.enumerated() {
+      for (index, method) in methods.enumerated() {
+        let render = prepared(
+          scene, width: width, height: height, precision: precision,
+          method: method, threads: threads)
+        buffers[index] = buffers[index] ?? render.buffers
         let seconds = median((0..<runs).map { _ in render.time() })
         fastest[index] = Swift.min(fastest[index], seconds)
       }
     }
-    return IntersectionMethod.allCases.indices.map {
-      (IntersectionMethod.allCases[$0], renders[$0].buffers, fastest[$0])
-    }
+    return methods.indices.map { (methods[$0], buffers[$0]!, fastest[$0]) }
   }
 
   /// A compiled scene's first render (a warm-up, whose buffers are every
