@@ -21,11 +21,13 @@ public struct Group<Scalar: RayScalar>: Hashable, Sendable {
 /// Spheres and planes are stored inline: boxing each one cost a heap
 /// allocation per object, a fifth of the parse of a million spheres.
 /// Triangles are boxed so that they do not make every entry three times
-/// bigger; a transform must be, since it holds an object.
+/// bigger, and a mesh file's triangles are one entry, their array
+/// (`TriangleMesh`); a transform must be boxed, since it holds an object.
 public enum SceneObject<Scalar: RayScalar>: Hashable, Sendable {
   case sphere(Sphere<Scalar>)
   case plane(Plane<Scalar>)
   indirect case triangle(Triangle<Scalar>)
+  case mesh(TriangleMesh<Scalar>)
   case group(Group<Scalar>)
   indirect case transform(Transform<Scalar>)
 }
@@ -42,6 +44,8 @@ extension SceneObject: Intersectable {
       plane.intersect(ray, after: tMin, before: tMax, method: method)
     case .triangle(let triangle):
       triangle.intersect(ray, after: tMin, before: tMax, method: method)
+    case .mesh(let mesh):
+      mesh.intersect(ray, after: tMin, before: tMax, method: method)
     case .group(let group):
       group.intersect(ray, after: tMin, before: tMax, method: method)
     case .transform(let transform):

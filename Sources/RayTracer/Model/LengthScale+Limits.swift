@@ -77,6 +77,7 @@ extension LengthScale {
       case .sphere(let sphere): add(sphere)
       case .plane(let plane): add(plane)
       case .triangle(let triangle): add(triangle)
+      case .mesh(let mesh): for triangle in mesh.triangles { add(triangle) }
       case .group(let group):
         for child in group.objects { measure(child) }
       case .transform: add(Group([object]).flattened())

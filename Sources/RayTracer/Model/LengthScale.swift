@@ -78,6 +78,8 @@ public enum LengthScale {
     case .sphere(let sphere): body(.sphere(sphere))
     case .plane(let plane): body(.plane(plane))
     case .triangle(let triangle): body(.triangle(triangle))
+    case .mesh(let mesh):
+      for triangle in mesh.triangles { body(.triangle(triangle)) }
     case .group(let group):
       for child in group.objects { forEachPrimitive(in: child, body) }
     case .transform: Group([object]).flattened().forEach(body)
@@ -200,6 +202,8 @@ extension SceneObject {
     case .sphere(let sphere): .sphere(sphere.scaled(by: factor))
     case .plane(let plane): .plane(plane.scaled(by: factor))
     case .triangle(let triangle): .triangle(triangle.scaled(by: factor))
+    case .mesh(let mesh):
+      .mesh(TriangleMesh(mesh.triangles.map { $0.scaled(by: factor) }))
     case .group(let group): .group(group.scaled(by: factor))
     case .transform(let transform):
       .transform(

@@ -96,7 +96,7 @@ extension SceneObject {
   /// The object with its transforms applied (see `Group.placed`).
   public func placed() -> SceneObject {
     switch self {
-    case .sphere, .plane, .triangle:
+    case .sphere, .plane, .triangle, .mesh:
       return self
     case .group(let group):
       return .group(group.placed())
@@ -160,6 +160,7 @@ extension Group {
       case .sphere: counts.spheres += 1
       case .plane: counts.planes += 1
       case .triangle: counts.triangles += 1
+      case .mesh(let mesh): counts.triangles += mesh.triangles.count
       case .group(let group): for child in group.objects { count(child) }
       case .transform(let inner): count(inner.object)
       }
@@ -210,23 +211,22 @@ extension Group {
           result.triangles.append(triangle)
           return
         }
-        var moved = triangle
-        moved.v0 = matrix.transformPoint(triangle.v0)
-        moved.v1 = matrix.transformPoint(triangle.v1)
-        moved.v2 = matrix.transformPoint(triangle.v2)
-        if let normals = triangle.vertexNormals {
-          // Not normalised one by one: the hit's interpolation then gives
-          // the transform of the object's interpolated normal.
-          // A scale far from 1 (`UniformScale 1e20`) would take the
-          // cofactors, its square, out of range: they are taken of the
-          // matrix rescaled by a power of two, the same directions.
-          let normalMatrix = matrix.withLinearPartNearOne()
-          moved.vertexNormals = Triangle.VertexNormals(
-            normalMatrix.cofactorNormal(normals.n0),
-            normalMatrix.cofactorNormal(normals.n1),
-            normalMatrix.cofactorNormal(normals.n2))
+        result.triangles.append(triangle.moved(by: matrix))
+      case .mesh(let mesh):
+        guard let (matrix, _) = transform else {
+          // The scene's only triangles: the mesh's own array, shared.
+          if result.triangles.isEmpty
+            && mesh.triangles.count == counts.triangles
+          {
+            result.triangles = mesh.triangles
+          } else {
+            result.triangles.append(contentsOf: mesh.triangles)
+          }
+          return
         }
-        result.triangles.append(moved)
+        for triangle in mesh.triangles {
+          result.triangles.append(triangle.moved(by: matrix))
+        }
       case .group(let group):
         for child in group.objects { collect(child, transform) }
       case .transform(let inner):
@@ -245,6 +245,30 @@ extension Group {
       }
     }
     return result
+  }
+}
+
+extension Triangle {
+  /// The triangle placed by `matrix`: its vertices moved, its vertex
+  /// normals by the inverse transpose.
+  func moved(by matrix: Matrix4<Scalar>) -> Triangle {
+    var moved = self
+    moved.v0 = matrix.transformPoint(v0)
+    moved.v1 = matrix.transformPoint(v1)
+    moved.v2 = matrix.transformPoint(v2)
+    if let normals = vertexNormals {
+      // Not normalised one by one: the hit's interpolation then gives
+      // the transform of the object's interpolated normal.
+      // A scale far from 1 (`UniformScale 1e20`) would take the
+      // cofactors, its square, out of range: they are taken of the
+      // matrix rescaled by a power of two, the same directions.
+      let normalMatrix = matrix.withLinearPartNearOne()
+      moved.vertexNormals = Triangle.VertexNormals(
+        normalMatrix.cofactorNormal(normals.n0),
+        normalMatrix.cofactorNormal(normals.n1),
+        normalMatrix.cofactorNormal(normals.n2))
+    }
+    return moved
   }
 }
 

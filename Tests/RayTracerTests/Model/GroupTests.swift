@@ -176,6 +176,7 @@ extension SceneObject {
     case .plane: "plane"
     case .group: "group"
     case .triangle: "triangle"
+    case .mesh: "mesh"
     case .transform: "transform"
     }
   }

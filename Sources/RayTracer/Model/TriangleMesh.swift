@@ -1,0 +1,40 @@
+/// The triangles of one mesh file (the course's `TriangleMesh { obj_file … }`),
+/// hit as a group of them.
+///
+/// Kept side by side in one array rather than as one group entry each: a
+/// group's triangle entries are boxed, a heap allocation apiece, and for a
+/// mesh of millions the boxes, their entries and the page faults of both
+/// were most of reading it. The array is shared, not copied, when an
+/// untransformed mesh is the scene's only triangles (`Group.flattened`).
+public struct TriangleMesh<Scalar: RayScalar>: Hashable, Sendable {
+  public var triangles: [Triangle<Scalar>]
+
+  public init(_ triangles: [Triangle<Scalar>]) {
+    self.triangles = triangles
+  }
+}
+
+extension TriangleMesh: Intersectable {
+  /// The nearest hit among the triangles, in order, as a group's: a tie
+  /// goes to the earlier triangle.
+  public func intersect(
+    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar,
+    method: IntersectionMethod
+  ) -> Hit<Scalar>? {
+    var nearest: Hit<Scalar>?
+    for triangle in triangles {
+      if let hit = triangle.intersect(
+        ray, after: tMin, before: nearest?.t ?? tMax, method: method)
+      {
+        nearest = hit
+      }
+    }
+    return nearest
+  }
+
+  public func occludes(
+    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar
+  ) -> Bool {
+    triangles.contains { $0.occludes(ray, after: tMin, before: tMax) }
+  }
+}
