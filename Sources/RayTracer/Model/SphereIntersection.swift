@@ -84,11 +84,6 @@ public enum SphereIntersection {
     after tMin: S, before tMax: S, approach: inout ClosestApproach<S>?
   ) -> (t: S, entering: Bool)? {
     let s = p.dot(d)
-    // The eye outside (c > 0) and the centre behind it (s < 0): both roots
-    // are negative (their product c/a is positive, their sum 2s/a is not),
-    // and so are both as computed below (q < 0, c > 0), so a search from
-    // tMin ≥ 0 misses without the discriminant.
-    if tMin >= 0 && s < 0 && c > 0 { return nil }
     let ac = a * c
     let sSquared = s * s
     // Δ/4 = s² − ac. Where ac ≤ s²/2 the subtraction loses at most one bit

@@ -2,14 +2,14 @@ import XCTest
 
 @testable import RayTracer
 
-/// `SphereIntersection.stableRoot`'s shortcuts give the answer of its full
-/// computation.
+/// `SphereIntersection.stableRoot` on spheres behind the ray's origin, and
+/// the flat searches' shortcut for them (`StableKernel.intersect(…memo:)`).
 final class SphereIntersectionTests: XCTestCase {
   /// A sphere behind the ray's origin (centre behind, origin outside): the
-  /// search from tMin = 0 misses at once, and from tMin = −∞ the full
-  /// computation still finds the nearer of its two negative roots, the
-  /// entering one, within a few ulps of the reference; so the shortcut
-  /// stands only for tMin ≥ 0.
+  /// root from tMin = 0 is none, the kernel's shortcut says so before the
+  /// discriminant, and from tMin = −∞ the full computation still finds the
+  /// nearer of its two negative roots, the entering one, within a few ulps
+  /// of the reference; so the shortcut holds only for searches from 0.
   func checkSphereBehind<T: RayScalar>(_: T.Type) throws {
     var generator = SplitMix64(seed: 0x6265_6869_6e64)
     for _ in 0..<2_000 {
@@ -33,6 +33,29 @@ final class SphereIntersectionTests: XCTestCase {
           radiusSquared: radius * radius, after: tMin, before: .infinity)
       }
       XCTAssertNil(root(after: 0), "\(T.self): behind the origin")
+      let record = StableKernel<T>.SphereRecord(
+        offset: relative.offset, radiusSquared: radius * radius,
+        c: relative.c, inverseRadius: 1 / radius)
+      var memo = StableKernel<T>.noMemo
+      XCTAssertNil(
+        StableKernel<T>.intersect(
+          record, CameraRay(origin: .zero, direction: direction),
+          before: .infinity, memo: &memo))
+      // The same sphere ahead: the shortcut lets it through.
+      let ahead = CameraRelative.sphere(
+        center: -center, radius: radius, eye: Vector3<T>.zero, as: T.self)
+      let aheadRecord = StableKernel<T>.SphereRecord(
+        offset: ahead.offset, radiusSquared: radius * radius, c: ahead.c,
+        inverseRadius: 1 / radius)
+      XCTAssertEqual(
+        StableKernel<T>.intersect(
+          aheadRecord, CameraRay(origin: .zero, direction: direction),
+          before: .infinity, memo: &memo),
+        SphereIntersection.stableRoot(
+          direction: direction, lengthSquared: a,
+          inverseLengthSquared: SphereIntersection.inverseLengthSquared(a),
+          offset: ahead.offset, c: ahead.c, radiusSquared: radius * radius,
+          after: 0, before: .infinity)?.t, "\(T.self): ahead")
       let ray = Ray<T>(origin: .zero, direction: direction)
       guard let want = referenceIntersect(ray, sphere, after: -.infinity)
       else {
