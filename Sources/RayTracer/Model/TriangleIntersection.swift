@@ -47,7 +47,7 @@ public enum TriangleIntersection {
   ///   TriangleTests for the measured bound). The barycentrics carry an
   ///   absolute error of a few ε times (distance from the origin / size of
   ///   the triangle): the shear subtracts nearly equal numbers.
-  @inlinable @inline(__always)
+  @inlinable
   public static func intersect<S: RayScalar>(
     _ ray: WatertightRay<S>, _ v0: Vector3<S>, _ v1: Vector3<S>,
     _ v2: Vector3<S>, after tMin: S, before tMax: S
@@ -180,7 +180,7 @@ public struct WatertightRay<S: RayScalar>: Hashable, Sendable {
   public var shearY: S
   public var shearZ: S
 
-  @inlinable @inline(__always)
+  @inlinable
   public init(_ ray: Ray<S>) {
     let d = ray.direction
     let x = d.x.magnitude
