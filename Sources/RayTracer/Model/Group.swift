@@ -55,15 +55,32 @@ extension SceneObject: Intersectable {
 }
 
 extension Group: Intersectable {
-  /// The nearest hit among the objects, tested in order; each later object
-  /// only has to beat the nearest so far (strictly: a tie goes to the
-  /// earlier object).
+  /// The nearest hit among the objects (`nearestHit`).
   public func intersect(
     _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar,
     method: IntersectionMethod
   ) -> Hit<Scalar>? {
-    var nearest: Hit<Scalar>?
-    for object in objects {
+    objects.nearestHit(ray, after: tMin, before: tMax, method: method)
+  }
+
+  public func occludes(
+    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar
+  ) -> Bool {
+    objects.contains { $0.occludes(ray, after: tMin, before: tMax) }
+  }
+}
+
+extension Sequence where Element: Intersectable {
+  /// The nearest hit among the elements, tested in order; each later one
+  /// only has to beat the nearest so far (strictly: a tie goes to the
+  /// earlier one). A group's objects and a mesh's triangles are searched
+  /// this way.
+  func nearestHit(
+    _ ray: Ray<Element.Scalar>, after tMin: Element.Scalar,
+    before tMax: Element.Scalar, method: IntersectionMethod
+  ) -> Hit<Element.Scalar>? {
+    var nearest: Hit<Element.Scalar>?
+    for object in self {
       if let hit = object.intersect(
         ray, after: tMin, before: nearest?.t ?? tMax, method: method)
       {
@@ -71,11 +88,5 @@ extension Group: Intersectable {
       }
     }
     return nearest
-  }
-
-  public func occludes(
-    _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar
-  ) -> Bool {
-    objects.contains { $0.occludes(ray, after: tMin, before: tMax) }
   }
 }

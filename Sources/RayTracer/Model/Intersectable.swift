@@ -1,9 +1,9 @@
 /// Anything a ray can hit: the one hit protocol of the model (the course's
 /// `Hitable`).
 ///
-/// Sphere, Plane, Triangle, Group and Transform conform to it, and the
-/// course engine (`CourseEngine`) renders by calling it for every object of
-/// the scene's group. The fast engine computes the same numbers from the
+/// Sphere, Plane, Triangle, TriangleMesh, Group and Transform conform to
+/// it, and the course engine (`CourseEngine`) renders by calling it for
+/// every object of the scene's group. The fast engine computes the same numbers from the
 /// same functions (`SphereIntersection`, `PlaneIntersection`,
 /// `TriangleIntersection`), on records prepared once per render.
 public protocol Intersectable<Scalar> {

@@ -15,21 +15,13 @@ public struct TriangleMesh<Scalar: RayScalar>: Hashable, Sendable {
 }
 
 extension TriangleMesh: Intersectable {
-  /// The nearest hit among the triangles, in order, as a group's: a tie
-  /// goes to the earlier triangle.
+  /// The nearest hit among the triangles, as a group's (`nearestHit`): a
+  /// tie goes to the earlier triangle.
   public func intersect(
     _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar,
     method: IntersectionMethod
   ) -> Hit<Scalar>? {
-    var nearest: Hit<Scalar>?
-    for triangle in triangles {
-      if let hit = triangle.intersect(
-        ray, after: tMin, before: nearest?.t ?? tMax, method: method)
-      {
-        nearest = hit
-      }
-    }
-    return nearest
+    triangles.nearestHit(ray, after: tMin, before: tMax, method: method)
   }
 
   public func occludes(
