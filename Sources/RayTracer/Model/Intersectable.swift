@@ -3,9 +3,10 @@
 ///
 /// Sphere, Plane, Triangle, TriangleMesh, Group and Transform conform to
 /// it, and the course engine (`CourseEngine`) renders by calling it for
-/// every object of the scene's group. The fast engine computes the same numbers from the
-/// same functions (`SphereIntersection`, `PlaneIntersection`,
-/// `TriangleIntersection`), on records prepared once per render.
+/// every object of the scene's group. The fast engine computes the same
+/// numbers from the same functions (`SphereIntersection`,
+/// `PlaneIntersection`, `TriangleIntersection`), on records prepared once
+/// per render.
 public protocol Intersectable<Scalar> {
   associatedtype Scalar: RayScalar
 

@@ -128,9 +128,11 @@ public enum SphereIntersection {
   /// the sign from `entering`, with √((r² − |l|²)/a) taken as
   /// √(a·(r² − |l|²))/a from the root's own square root (the far form of
   /// `stableRoot` computes it), which saves a square root on every far hit:
-  /// within 2 ε of the direct form, far below l's own error there. Which root was hit is passed in rather than
-  /// found by comparing t with s/a: for a sphere 10⁸ radii away in Float the
-  /// two roots round to the same t, and the comparison would flip the normal.
+  /// within 3 ε of the direct form (1.75 ε against 1 ε, from their
+  /// roundings), far below l's own error there. Which root was hit is
+  /// passed in rather than found by comparing t with s/a: for a sphere 10⁸
+  /// radii away in Float the two roots round to the same t, and the
+  /// comparison would flip the normal.
   ///
   /// The vector has length r in exact arithmetic, so it is scaled by 1/r and
   /// its length corrected by one Newton step for 1/√(n·n), whose error is
@@ -139,7 +141,8 @@ public enum SphereIntersection {
   /// This saves a square root and a division on every hit.
   @inlinable @inline(__always)
   public static func stableNormal<S: RayScalar>(
-    direction d: Vector3<S>, lengthSquared a: S, inverseLengthSquared inverseA: S,
+    direction d: Vector3<S>, lengthSquared a: S,
+    inverseLengthSquared inverseA: S,
     offset p: Vector3<S>, radiusSquared: S, inverseRadius: S, entering: Bool
   ) -> Vector3<S> {
     let s = p.dot(d)

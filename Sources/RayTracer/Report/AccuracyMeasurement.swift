@@ -143,10 +143,12 @@ public enum AccuracyRender {
   public static func renderMethods(
     _ scene: Scene, width: Int, height: Int, precision: Precision,
     threads: Int = 1, runs: Int = 1, rounds: Int = 1
-  ) -> [(method: IntersectionMethod, buffers: AnyRenderBuffers, seconds: Double)]
-  {
+  ) -> [(
+    method: IntersectionMethod, buffers: AnyRenderBuffers, seconds: Double
+  )] {
     let methods = IntersectionMethod.allCases
-    var buffers: [AnyRenderBuffers?] = Array(repeating: nil, count: methods.count)
+    var buffers: [AnyRenderBuffers?] = Array(
+      repeating: nil, count: methods.count)
     var fastest = [Double](repeating: .infinity, count: methods.count)
     for _ in 0..<rounds {
       for (index, method) in methods.enumerated() {
@@ -178,13 +180,17 @@ public enum AccuracyRender {
       method: method, precision: precision, threads: threads)
     switch (precision, method) {
     case (.float, .naive):
-      return prepared(NaiveKernel<Float>.self, scene, settings, AnyRenderBuffers.float)
+      return prepared(
+        NaiveKernel<Float>.self, scene, settings, AnyRenderBuffers.float)
     case (.float, .stable):
-      return prepared(StableKernel<Float>.self, scene, settings, AnyRenderBuffers.float)
+      return prepared(
+        StableKernel<Float>.self, scene, settings, AnyRenderBuffers.float)
     case (.double, .naive):
-      return prepared(NaiveKernel<Double>.self, scene, settings, AnyRenderBuffers.double)
+      return prepared(
+        NaiveKernel<Double>.self, scene, settings, AnyRenderBuffers.double)
     case (.double, .stable):
-      return prepared(StableKernel<Double>.self, scene, settings, AnyRenderBuffers.double)
+      return prepared(
+        StableKernel<Double>.self, scene, settings, AnyRenderBuffers.double)
     }
   }
 

@@ -21,11 +21,12 @@ final class TriangleMeshTests: XCTestCase {
           Vector3(2 * cos(b), 2 * sin(b), -5.5), vertexNormals: normals,
           materialIndex: index % 3))
     }
-    return triangles + triangles.prefix(2).map {
-      var twin = $0
-      twin.materialIndex = 7
-      return twin
-    }
+    return triangles
+      + triangles.prefix(2).map {
+        var twin = $0
+        twin.materialIndex = 7
+        return twin
+      }
   }
 
   func rays() -> [Ray<Double>] {
@@ -68,7 +69,8 @@ final class TriangleMeshTests: XCTestCase {
     let triangles = fan(8)
     let loose = Triangle<Double>(
       Vector3(1, 1, -3), Vector3(2, 1, -3), Vector3(1, 2, -3))
-    let matrix = Matrix4<Double>.translation(Vector3(1, 2, 3))
+    let matrix =
+      Matrix4<Double>.translation(Vector3(1, 2, 3))
       * Matrix4.rotationY(degrees: 30) * Matrix4.scale(Vector3(1, 2, 0.5))
     func scenes(_ meshObject: SceneObject<Double>) -> [Group<Double>] {
       [
