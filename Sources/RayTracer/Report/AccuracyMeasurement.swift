@@ -147,20 +147,21 @@ public enum AccuracyRender {
     method: IntersectionMethod, buffers: AnyRenderBuffers, seconds: Double
   )] {
     let methods = IntersectionMethod.allCases
-    var buffers: [AnyRenderBuffers?] = Array(
-      repeating: nil, count: methods.count)
+    // Every round's buffers are the same (the renderer is deterministic):
+    // the first round's are kept.
+    var buffers: [AnyRenderBuffers] = []
     var fastest = [Double](repeating: .infinity, count: methods.count)
-    for _ in 0..<rounds {
+    for round in 0..<rounds {
       for (index, method) in methods.enumerated() {
         let render = prepared(
           scene, width: width, height: height, precision: precision,
           method: method, threads: threads)
-        buffers[index] = buffers[index] ?? render.buffers
+        if round == 0 { buffers.append(render.buffers) }
         let seconds = median((0..<runs).map { _ in render.time() })
         fastest[index] = Swift.min(fastest[index], seconds)
       }
     }
-    return methods.indices.map { (methods[$0], buffers[$0]!, fastest[$0]) }
+    return methods.indices.map { (methods[$0], buffers[$0], fastest[$0]) }
   }
 
   /// A compiled scene's first render (a warm-up, whose buffers are every
