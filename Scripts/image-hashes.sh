@@ -2,6 +2,8 @@
 # Renders every project scene, the stiff suite and (when ../shared is beside
 # the checkout) the course's scenes in each precision, method, style and
 # sampling, and prints one line per image: its SHA-256 and how it was made.
+# The shaded image is written as PPM, so that the hash is of the pixels and
+# not of how a PNG encoder happened to compress them.
 # Compare the output of two builds to show a change leaves images bit for bit:
 #   Scripts/image-hashes.sh .build/release/raytrace > before.txt
 #   ... change, rebuild ...
@@ -21,9 +23,9 @@ done
 
 render() {
   local label=$1; shift
-  "$binary" "$@" -o "$out/s.png" --depth "$out/d.pfm" \
+  "$binary" "$@" -o "$out/s.ppm" --depth "$out/d.pfm" \
     --normals "$out/n.pfm" 2>/dev/null || { echo "failed  $label"; return; }
-  echo "$(cat "$out/s.png" "$out/d.pfm" "$out/n.pfm" | sha256sum | cut -c1-16)  $label"
+  echo "$(cat "$out/s.ppm" "$out/d.pfm" "$out/n.pfm" | sha256sum | cut -c1-16)  $label"
 }
 
 for scene in "${scenes[@]}"; do

@@ -35,25 +35,26 @@ public struct PNGOptions: Hashable, Sendable {
 
 /// Writes 8-bit RGB PNG files: signature, IHDR, one IDAT, IEND, each chunk
 /// with its CRC-32, compressed with the system zlib.
+///
+/// The image data is compressed in pieces of rows, each an independent
+/// deflate stream flushed to a byte boundary and the pieces' streams
+/// joined into the one zlib stream PNG holds (`PNGEncoder.Pieces`), so that
+/// the pieces of one image, or of several, compress on several threads at
+/// once. `encode` compresses them one after another.
 public enum PNGEncoder {
   static let signature: [UInt8] = [137, 80, 78, 71, 13, 10, 26, 10]
 
   public static func encode(
     _ image: Image8, options: PNGOptions = .default
   ) -> [UInt8] {
-    var header: [UInt8] = []
-    header.appendBigEndian(UInt32(image.width))
-    header.appendBigEndian(UInt32(image.height))
-    // Bit depth 8, colour type 2 (RGB), deflate, adaptive filtering, no
-    // interlace.
-    header += [8, 2, 0, 0, 0]
-    var bytes = signature
-    appendChunk("IHDR", header, to: &bytes)
-    let filtered = filterRows(image, options.filter)
-    appendChunk(
-      "IDAT", compress(filtered, level: options.compressionLevel), to: &bytes)
-    appendChunk("IEND", [], to: &bytes)
-    return bytes
+    encode(PixelRows(image), options: options)
+  }
+
+  public static func encode(
+    _ rows: PixelRows, options: PNGOptions = .default
+  ) -> [UInt8] {
+    let pieces = Pieces(rows, options: options)
+    return pieces.assemble((0..<pieces.count).map(pieces.compress))
   }
 
   static func appendChunk(
@@ -82,64 +83,61 @@ public enum PNGEncoder {
     }
   }
 
-  static func compress(_ data: [UInt8], level: Int32) -> [UInt8] {
-    var length = compressBound(uLong(data.count))
-    var output = [UInt8](repeating: 0, count: Int(length))
-    let status = output.withUnsafeMutableBufferPointer { out in
-      data.withUnsafeBufferPointer { input in
-        compress2(
-          out.baseAddress, &length, input.baseAddress, uLong(input.count), level
-        )
-      }
-    }
-    // compressBound guarantees room, and the arguments are valid, so zlib
-    // cannot fail here short of running out of memory.
-    precondition(status == Z_OK, "zlib compress2 failed with status \(status)")
-    output.removeLast(output.count - Int(length))
-    return output
-  }
-
-  /// Each row prefixed with its filter type byte.
+  /// Each row prefixed with its filter type byte, the whole image at once.
   static func filterRows(_ image: Image8, _ filter: PNGFilter) -> [UInt8] {
     let stride = image.width * 3
     var out = [UInt8](repeating: 0, count: image.height * (stride + 1))
+    var scratch = [UInt8](repeating: 0, count: stride)
     image.bytes.withUnsafeBufferPointer { pixels in
       out.withUnsafeMutableBufferPointer { out in
-        var candidates = [UInt8](
-          repeating: 0, count: filter == .adaptive ? stride : 0)
-        for row in 0..<image.height {
-          let current = UnsafeBufferPointer(
-            rebasing: pixels[(row * stride)..<((row + 1) * stride)])
-          let previous =
-            row > 0
-            ? UnsafeBufferPointer(
-              rebasing: pixels[((row - 1) * stride)..<(row * stride)])
-            : nil
-          let target = UnsafeMutableBufferPointer(
-            rebasing: out[(row * (stride + 1) + 1)..<((row + 1) * (stride + 1))]
-          )
-          var chosen = filter
-          if filter == .adaptive {
-            var bestCost = Int.max
-            for option in [PNGFilter.none, .sub, .up, .paeth] {
-              let cost = candidates.withUnsafeMutableBufferPointer { scratch in
-                apply(option, current, previous, into: scratch)
-                return scratch.reduce(0) {
-                  $0 + Int(Int8(bitPattern: $1).magnitude)
-                }
-              }
-              if cost < bestCost {
-                bestCost = cost
-                chosen = option
-              }
-            }
+        scratch.withUnsafeMutableBufferPointer { scratch in
+          for row in 0..<image.height {
+            let current = UnsafeBufferPointer(
+              rebasing: pixels[(row * stride)..<((row + 1) * stride)])
+            let previous =
+              row > 0
+              ? UnsafeBufferPointer(
+                rebasing: pixels[((row - 1) * stride)..<(row * stride)])
+              : nil
+            filterRow(
+              current, previous, filter,
+              into: UnsafeMutableBufferPointer(
+                rebasing: out[(row * (stride + 1))..<((row + 1) * (stride + 1))]
+              ), scratch: scratch)
           }
-          apply(chosen, current, previous, into: target)
-          out[row * (stride + 1)] = chosen.typeByte
         }
       }
     }
     return out
+  }
+
+  /// One row filtered into `target` (stride + 1 bytes): its filter type
+  /// byte, then the filtered bytes. `previous` is nil for the first row;
+  /// `scratch` (stride bytes) holds the adaptive filter's candidates.
+  static func filterRow(
+    _ current: UnsafeBufferPointer<UInt8>,
+    _ previous: UnsafeBufferPointer<UInt8>?, _ filter: PNGFilter,
+    into target: UnsafeMutableBufferPointer<UInt8>,
+    scratch: UnsafeMutableBufferPointer<UInt8>
+  ) {
+    var chosen = filter
+    if filter == .adaptive {
+      var bestCost = Int.max
+      for option in [PNGFilter.none, .sub, .up, .paeth] {
+        apply(option, current, previous, into: scratch)
+        let cost = scratch.reduce(0) {
+          $0 + Int(Int8(bitPattern: $1).magnitude)
+        }
+        if cost < bestCost {
+          bestCost = cost
+          chosen = option
+        }
+      }
+    }
+    target[0] = chosen.typeByte
+    apply(
+      chosen, current, previous,
+      into: UnsafeMutableBufferPointer(rebasing: target[1...]))
   }
 
   /// Filters one row; `previous` is nil for the first row (treated as zeros).

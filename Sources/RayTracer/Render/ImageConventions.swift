@@ -29,29 +29,43 @@ extension ImageStyle {
   public func depthImage<S: RayScalar>(
     _ buffers: RenderBuffers<S>, range given: ClosedRange<Double>?
   ) -> Image8 {
-    let range = depthRange(buffers.depth, given: given)
+    depthRows(buffers, range: depthRange(buffers.depth, given: given)).image
+  }
+
+  /// `depthImage` a row at a time, for the `range` that `depthRange` gave.
+  public func depthRows<S: RayScalar>(
+    _ buffers: RenderBuffers<S>, range: ClosedRange<Double>?
+  ) -> PixelRows {
     let near = S(range?.lowerBound ?? 0)
     let span = S(range.map { $0.upperBound - $0.lowerBound } ?? 1)
     let far = S(range?.upperBound ?? 0)
-    var bytes = [UInt8](repeating: 0, count: buffers.depth.count * 3)
-    for (pixel, t) in buffers.depth.enumerated() where t.isFinite {
-      let fraction = span > 0 ? (t - near) / span : 0
-      let level: UInt8
-      switch self {
-      case .course:
-        if range == nil || t > far { continue }
-        // The course's 255 − ⌊255·fraction⌋: inverted after truncating,
-        // one level above truncating 1 − fraction wherever 255·fraction
-        // is not a whole number.
-        level = 255 - quantize(fraction)
-      case .mit:
-        level = quantize(fraction)
+    let (width, depth) = (buffers.width, buffers.depth)
+    let style = self
+    return PixelRows(width: width, height: buffers.height) { row, out in
+      depth.withUnsafeBufferPointer { depth in
+        for column in 0..<width {
+          let t = depth[row * width + column]
+          var level: UInt8 = 0
+          if t.isFinite {
+            let fraction = span > 0 ? (t - near) / span : 0
+            switch style {
+            case .course:
+              // The course's 255 − ⌊255·fraction⌋: inverted after
+              // truncating, one level above truncating 1 − fraction
+              // wherever 255·fraction is not a whole number.
+              if range != nil && t <= far {
+                level = 255 - style.quantize(fraction)
+              }
+            case .mit:
+              level = style.quantize(fraction)
+            }
+          }
+          out[3 * column] = level
+          out[3 * column + 1] = level
+          out[3 * column + 2] = level
+        }
       }
-      bytes[3 * pixel] = level
-      bytes[3 * pixel + 1] = level
-      bytes[3 * pixel + 2] = level
     }
-    return Image8(width: buffers.width, height: buffers.height, bytes: bytes)
   }
 
   /// Course: |n| per component, misses black. Mit: (n + 1)/2, misses grey.
@@ -61,11 +75,18 @@ extension ImageStyle {
         width: buffers.width, height: buffers.height,
         bytes: buffers.normalBytes)
     }
-    var bytes = [UInt8](repeating: 0, count: buffers.normals.count * 3)
-    for (pixel, normal) in buffers.normals.enumerated() {
-      store(self.pixel(normal: normal), at: pixel, in: &bytes)
+    return normalRows(buffers).image
+  }
+
+  /// `normalImage` a row at a time.
+  public func normalRows<S: RayScalar>(_ buffers: RenderBuffers<S>)
+    -> PixelRows
+  {
+    if !buffers.normalBytes.isEmpty {
+      return PixelRows(normalImage(buffers))
     }
-    return Image8(width: buffers.width, height: buffers.height, bytes: bytes)
+    let style = self
+    return Self.rows(buffers.normals, buffers) { style.pixel(normal: $0) }
   }
 
   /// The shaded colour clamped to [0, 1].
@@ -74,11 +95,36 @@ extension ImageStyle {
       return Image8(
         width: buffers.width, height: buffers.height, bytes: buffers.colorBytes)
     }
-    var bytes = [UInt8](repeating: 0, count: buffers.color.count * 3)
-    for (pixel, color) in buffers.color.enumerated() {
-      store(self.pixel(color), at: pixel, in: &bytes)
+    return colorRows(buffers).image
+  }
+
+  /// `colorImage` a row at a time.
+  public func colorRows<S: RayScalar>(_ buffers: RenderBuffers<S>)
+    -> PixelRows
+  {
+    if !buffers.colorBytes.isEmpty {
+      return PixelRows(colorImage(buffers))
     }
-    return Image8(width: buffers.width, height: buffers.height, bytes: bytes)
+    let style = self
+    return Self.rows(buffers.color, buffers) { style.pixel($0) }
+  }
+
+  /// Rows of `values`, one pixel each.
+  private static func rows<S: RayScalar, Value: Sendable>(
+    _ values: [Value], _ buffers: RenderBuffers<S>,
+    _ pixel: @escaping @Sendable (Value) -> (UInt8, UInt8, UInt8)
+  ) -> PixelRows {
+    let width = buffers.width
+    return PixelRows(width: width, height: buffers.height) { row, out in
+      values.withUnsafeBufferPointer { values in
+        for column in 0..<width {
+          let value = pixel(values[row * width + column])
+          out[3 * column] = value.0
+          out[3 * column + 1] = value.1
+          out[3 * column + 2] = value.2
+        }
+      }
+    }
   }
 
   /// A normal's pixel: |n| per component (course) or (n + 1)/2 (mit),
@@ -100,14 +146,6 @@ extension ImageStyle {
   public func pixel<S: RayScalar>(_ value: Vector3<S>) -> (UInt8, UInt8, UInt8)
   {
     (quantize(value.x), quantize(value.y), quantize(value.z))
-  }
-
-  private func store(
-    _ value: (UInt8, UInt8, UInt8), at pixel: Int, in bytes: inout [UInt8]
-  ) {
-    bytes[3 * pixel] = value.0
-    bytes[3 * pixel + 1] = value.1
-    bytes[3 * pixel + 2] = value.2
   }
 
   /// [0, 1] to 0...255: truncation in the course style (its `UInt8(v·255)`),

@@ -248,27 +248,10 @@ public enum RenderJob {
       files.contains { $0.kind == .depth && $0.format.isEightBit }
       ? settings.style.depthRange(buffers.depth, given: output.depthRange)
       : nil
-    // Each file is mapped and compressed on its own thread: with three
-    // outputs this was as long as the render itself.
-    let encodedFiles = EncodedFiles(count: files.count)
-    let png = output.png
-    DispatchQueue.concurrentPerform(iterations: files.count) { index in
-      let file = files[index]
-      let bytes: [UInt8]
-      if !file.format.isEightBit {
-        bytes = encodeRaw(rawImage(file.kind, buffers), file.format)
-      } else if file.kind == .depth {
-        bytes = encode(
-          settings.style.depthImage(buffers, range: usedRange), file.format,
-          png)
-      } else if file.kind == .normals {
-        bytes = encode(settings.style.normalImage(buffers), file.format, png)
-      } else {
-        bytes = encode(settings.style.colorImage(buffers), file.format, png)
-      }
-      encodedFiles.store(bytes, at: index)
-    }
-    try output.batch.commit(files.indices.map { encodedFiles.bytes(at: $0) })
+    let encoded = OutputEncoding.encode(
+      buffers, files: files, style: settings.style, depthRange: usedRange,
+      png: output.png)
+    try output.batch.commit(encoded)
     var report = RenderReport(
       settings: settings, spheres: 0, planes: 0, sphereSearch: search,
       compileSeconds: compileSeconds, renderSeconds: seconds.median,
@@ -294,49 +277,5 @@ public enum RenderJob {
         width: width, height: height, channels: 3,
         values: buffers.color.flatMap { [$0.x, $0.y, $0.z] })
     }
-  }
-
-  private static func encode(
-    _ image: Image8, _ format: ImageFormat, _ png: PNGOptions
-  ) -> [UInt8] {
-    format == .png
-      ? PNGEncoder.encode(image, options: png) : PPMEncoder.encode(image)
-  }
-
-  /// PFM is 32-bit by definition; NPY keeps the render's precision.
-  private static func encodeRaw<S: RayScalar>(
-    _ image: RawImage<S>, _ format: ImageFormat
-  ) -> [UInt8] {
-    if format == .pfm {
-      return PFMEncoder.encode(
-        RawImage(
-          width: image.width, height: image.height, channels: image.channels,
-          values: image.values.map { Float($0) }))
-    }
-    return NPYEncoder.encode(image)
-  }
-}
-
-/// One slot per output, each written by exactly one encoding thread: fixed
-/// storage, so that no write touches shared array bookkeeping.
-private final class EncodedFiles: @unchecked Sendable {
-  private let slots: UnsafeMutableBufferPointer<[UInt8]>
-
-  init(count: Int) {
-    slots = .allocate(capacity: count)
-    slots.initialize(repeating: [])
-  }
-
-  deinit {
-    slots.deinitialize()
-    slots.deallocate()
-  }
-
-  func store(_ bytes: [UInt8], at index: Int) {
-    slots[index] = bytes
-  }
-
-  func bytes(at index: Int) -> [UInt8] {
-    slots[index]
   }
 }

@@ -5,7 +5,9 @@ import XCTest
 final class PNGEncoderTests: XCTestCase {
   /// A small image with every kind of row the filters care about: flat,
   /// gradients, noise.
-  func makeImage(width: Int = 13, height: Int = 7, seed: UInt64 = 1) -> Image8 {
+  static func makeImage(width: Int = 13, height: Int = 7, seed: UInt64 = 1)
+    -> Image8
+  {
     var generator = SplitMix64(seed: seed)
     var bytes: [UInt8] = []
     for row in 0..<height {
@@ -42,7 +44,7 @@ final class PNGEncoderTests: XCTestCase {
     var crc: UInt32
   }
 
-  func chunks(_ png: [UInt8]) -> [Chunk] {
+  static func chunks(_ png: [UInt8]) -> [Chunk] {
     var result: [Chunk] = []
     var offset = 8
     while offset + 12 <= png.count {
@@ -61,19 +63,19 @@ final class PNGEncoderTests: XCTestCase {
   }
 
   func testEncode_SignatureAndChunkOrder() {
-    let png = PNGEncoder.encode(makeImage())
+    let png = PNGEncoder.encode(Self.makeImage())
     XCTAssertEqual(Array(png[0..<8]), [137, 80, 78, 71, 13, 10, 26, 10])
-    XCTAssertEqual(chunks(png).map(\.type), ["IHDR", "IDAT", "IEND"])
+    XCTAssertEqual(Self.chunks(png).map(\.type), ["IHDR", "IDAT", "IEND"])
   }
 
   func testEncode_HeaderFields() throws {
-    let png = PNGEncoder.encode(makeImage(width: 300, height: 2))
-    let header = try XCTUnwrap(chunks(png).first)
+    let png = PNGEncoder.encode(Self.makeImage(width: 300, height: 2))
+    let header = try XCTUnwrap(Self.chunks(png).first)
     XCTAssertEqual(header.data, [0, 0, 1, 44, 0, 0, 0, 2, 8, 2, 0, 0, 0])
   }
 
   func testEncode_EveryChunkCRCMatchesTheBitwiseReference() {
-    for chunk in chunks(PNGEncoder.encode(makeImage())) {
+    for chunk in Self.chunks(PNGEncoder.encode(Self.makeImage())) {
       XCTAssertEqual(
         chunk.crc, referenceCRC(Array(chunk.type.utf8) + chunk.data), chunk.type
       )
@@ -86,7 +88,7 @@ final class PNGEncoderTests: XCTestCase {
   }
 
   func testEncodeDecode_RoundTripForEveryFilterAndLevel() throws {
-    let image = makeImage()
+    let image = Self.makeImage()
     for filter in PNGFilter.allCases {
       for level: Int32 in [0, 1, 6, 9] {
         let png = PNGEncoder.encode(
@@ -98,7 +100,7 @@ final class PNGEncoderTests: XCTestCase {
   }
 
   func testEncode_RowsCarryTheChosenFilterType() throws {
-    let image = makeImage()
+    let image = Self.makeImage()
     for (filter, type) in [
       (PNGFilter.none, 0), (.sub, 1), (.up, 2), (.paeth, 4),
     ] {
@@ -128,13 +130,13 @@ final class PNGEncoderTests: XCTestCase {
   }
 
   func testDecode_RejectsACorruptedCRC() {
-    var png = PNGEncoder.encode(makeImage())
+    var png = PNGEncoder.encode(Self.makeImage())
     png[png.count - 20] ^= 0xFF  // inside IDAT
     XCTAssertThrowsError(try PNGDecoder.decode(png))
   }
 
   func testDecode_RejectsATruncatedFile() {
-    let png = PNGEncoder.encode(makeImage())
+    let png = PNGEncoder.encode(Self.makeImage())
     XCTAssertThrowsError(
       try PNGDecoder.decode(Array(png.prefix(png.count - 5))))
   }
