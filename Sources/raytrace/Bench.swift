@@ -15,8 +15,13 @@ struct Bench: ParsableCommand {
       the timed runs' only render, cold caches and fresh buffers included; \
       'end to end' the median wall time of the timed runs (parse, build, \
       render, write PNGs); 'peak memory' their largest resident set. The \
-      random sphere and mesh scenes are written to --data on first use; run \
-      from the project's root.
+      random sphere and mesh scenes are written to --data on first use; the \
+      MIT assignment's bunny and arch are read from --reference, and left \
+      out where it is missing; run from the project's root. With --peer, \
+      each workload is also rendered by Mitsuba 3 through the course tools' \
+      peer_mitsuba.py (as it is and with --freeze, the better kept; depth \
+      and normals at pixel centres, or --spp jittered samples), and its warm \
+      Mrays/s and raytrace's ratio to it are added to the row.
       """)
 
   @Option(help: "Timed runs per workload, after one warm-up.")
@@ -27,9 +32,21 @@ struct Bench: ParsableCommand {
       "Folder for generated scenes and images.", valueName: "dir"))
   var data: String = ".build/bench"
 
+  @Option(
+    help: ArgumentHelp(
+      "Folder of the MIT assignment's scenes (bunny, arch).",
+      valueName: "dir"))
+  var reference: String = "../shared/reference/mit"
+
+  @Option(
+    help: ArgumentHelp(
+      "Also time Mitsuba 3 on each workload with this peer_mitsuba.py.",
+      valueName: "script"))
+  var peer: String?
+
   @Flag(
     help:
-      "Skip the 1,000,000-sphere, 1,000,000-triangle and 3840x2160 workloads."
+      "Skip the workloads of 10⁶ objects or more and of 3840x2160."
   )
   var quick = false
 
@@ -40,26 +57,51 @@ struct Bench: ParsableCommand {
 
   func run() throws {
     let benchmark = Benchmark(
-      executable: currentExecutable(), dataFolder: data, runs: runs)
+      executable: currentExecutable(), dataFolder: data, runs: runs,
+      referenceFolder: reference)
+    let peerBenchmark = peer.map { PeerBenchmark(script: $0, runs: runs) }
+    let peerHeader = peerBenchmark == nil ? "" : " Mitsuba 3 (Mrays/s) | ÷ Mitsuba |"
     print(
       "| workload | size | objects | threads | outputs | samples | "
         + "render, warm (ms) | Mrays/s | render, first (ms) | end to end (s) | "
-        + "peak memory (MiB) |"
+        + "peak memory (MiB) |" + peerHeader
     )
-    print("|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|")
+    print(
+      "|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|"
+        + (peerBenchmark == nil ? "" : "---:|---:|"))
     var endToEnd: [Int: Double] = [:]
+    var missing: Set<String> = []
     for workload in Workload.standard {
       if quick
         && (workload.width * workload.height > 1920 * 1080
-          || workload.objectsDescription == "1000000")
+          || (workload.generatedCount ?? 0) >= 1_000_000)
       {
+        continue
+      }
+      guard benchmark.isAvailable(workload) else {
+        missing.insert(workload.name)
         continue
       }
       do {
         let result = try benchmark.measure(workload)
+        var peerColumns = ""
+        if let peerBenchmark {
+          if PeerBenchmark.accepts(workload) {
+            let peer = try peerBenchmark.measure(
+              scene: result.scenePath, workload)
+            peerColumns =
+              " \(formatted(peer.megaraysPerSecond, digits: 3)) | "
+              + "\(formatted(result.megaraysPerSecond / peer.megaraysPerSecond, digits: 3))× |"
+          } else {
+            peerColumns = " – | – |"
+          }
+        }
+        let objects =
+          workload.generatedCount.map(String.init)
+          ?? result.objects.map(String.init) ?? "?"
         print(
           "| \(workload.name) | \(workload.width)×\(workload.height) | "
-            + "\(workload.objectsDescription) | "
+            + "\(objects) | "
             + "\(result.threads) | "
             + "\(workload.outputs.names.joined(separator: " + ")) | "
             + "\(workload.samples) | "
@@ -67,7 +109,8 @@ struct Bench: ParsableCommand {
             + "\(formatted(result.megaraysPerSecond, digits: 3)) | "
             + "\(formatted(result.renderSeconds * 1000, digits: 3)) | "
             + "\(formatted(result.endToEndSeconds, digits: 3)) | "
-            + "\(formatted(Double(result.peakBytes) / 1_048_576, digits: 3)) |")
+            + "\(formatted(Double(result.peakBytes) / 1_048_576, digits: 3)) |"
+            + peerColumns)
         if case .randomSpheres(let count) = workload.source,
           workload.threads == nil,
           workload.outputs == [.depth, .normals]
@@ -78,6 +121,11 @@ struct Bench: ParsableCommand {
         printError("raytrace: error: \(error)")
         throw ExitCode.failure
       }
+    }
+    if !missing.isEmpty {
+      print(
+        "\nLeft out (no \(reference)): "
+          + missing.sorted().joined(separator: ", "))
     }
     // The issue's scaling goal, read off the rows above.
     if let large = endToEnd[1_000_000], let small = endToEnd[10_000] {

@@ -9,6 +9,9 @@ public struct Workload: Sendable {
     /// `RandomMesh` with this many triangles, written once to the data
     /// folder.
     case randomMesh(Int)
+    /// A scene of the MIT assignment, by its file name in the reference
+    /// folder (`Benchmark.referenceFolder`); skipped where that is absent.
+    case reference(String)
   }
 
   public var name: String
@@ -71,8 +74,29 @@ public struct Workload: Sendable {
       name: "mesh", source: .randomMesh(100_000), width: 1920, height: 1080,
       outputs: [.depth, .normals]),
     Workload(
+      name: "mesh", source: .randomMesh(100_000), width: 1920, height: 1080,
+      outputs: [.shaded], samples: 16),
+    Workload(
       name: "mesh", source: .randomMesh(1_000_000), width: 1920, height: 1080,
       outputs: [.depth, .normals]),
+    Workload(
+      name: "mesh", source: .randomMesh(1_000_000), width: 1920, height: 1080,
+      outputs: [.shaded], samples: 16),
+    Workload(
+      name: "mesh", source: .randomMesh(5_000_000), width: 1920, height: 1080,
+      outputs: [.depth, .normals]),
+    Workload(
+      name: "bunny_1k", source: .reference("scene06_bunny_1k.txt"),
+      width: 800, height: 800, outputs: [.depth, .normals]),
+    Workload(
+      name: "bunny_1k", source: .reference("scene06_bunny_1k.txt"),
+      width: 800, height: 800, outputs: [.shaded], samples: 16),
+    Workload(
+      name: "arch", source: .reference("scene07_arch.txt"), width: 800,
+      height: 800, outputs: [.depth, .normals]),
+    Workload(
+      name: "arch", source: .reference("scene07_arch.txt"), width: 800,
+      height: 800, outputs: [.shaded], samples: 16),
   ]
 
   public init(
@@ -88,10 +112,12 @@ public struct Workload: Sendable {
     self.samples = samples
   }
 
-  public var objectsDescription: String {
+  /// The generated scenes' object count; nil for a scene file, whose
+  /// count the run reports (`BenchmarkResult.objects`).
+  public var generatedCount: Int? {
     switch source {
-    case .file: "7"
-    case .randomSpheres(let count), .randomMesh(let count): "\(count)"
+    case .file, .reference: nil
+    case .randomSpheres(let count), .randomMesh(let count): count
     }
   }
 }
@@ -112,6 +138,9 @@ public struct BenchmarkResult: Sendable {
   public var endToEndSeconds: Double
   /// The largest resident set of any run, in bytes.
   public var peakBytes: Int
+  /// Spheres, planes, triangles and transformed spheres, as the render
+  /// reported them (`--stats`).
+  public var objects: Int?
 
   /// Camera rays per second of the warm render, every sample counted.
   public var megaraysPerSecond: Double {
@@ -127,11 +156,24 @@ public struct Benchmark {
   public var executable: String
   public var dataFolder: String
   public var runs: Int
+  /// The MIT assignment's scenes (`Workload.Source.reference`).
+  public var referenceFolder: String
 
-  public init(executable: String, dataFolder: String, runs: Int) {
+  public init(
+    executable: String, dataFolder: String, runs: Int,
+    referenceFolder: String = "../shared/reference/mit"
+  ) {
     self.executable = executable
     self.dataFolder = dataFolder
     self.runs = runs
+    self.referenceFolder = referenceFolder
+  }
+
+  /// Whether `workload`'s scene can be had: a reference scene only where
+  /// the reference folder holds it.
+  public func isAvailable(_ workload: Workload) -> Bool {
+    guard case .reference(let name) = workload.source else { return true }
+    return access("\(referenceFolder)/\(name)", R_OK) == 0
   }
 
   public struct Failure: Error, CustomStringConvertible {
@@ -143,6 +185,8 @@ public struct Benchmark {
     switch workload.source {
     case .file(let path):
       return path
+    case .reference(let name):
+      return "\(referenceFolder)/\(name)"
     case .randomSpheres(let count):
       let path = "\(dataFolder)/random-\(count).txt"
       if access(path, R_OK) != 0 {
@@ -235,7 +279,27 @@ public struct Benchmark {
     return BenchmarkResult(
       workload: workload, scenePath: scene, threads: threads,
       renderSeconds: median(renderTimes), warmRenderSeconds: warmSeconds,
-      endToEndSeconds: median(wallTimes), peakBytes: peak)
+      endToEndSeconds: median(wallTimes), peakBytes: peak,
+      objects: Self.objectCount(inStats: warm.stderr))
+  }
+
+  /// The sum of the counts in a `scene: PATH: 6 spheres, 1 planes, 0
+  /// triangles, 0 transformed spheres; …` line.
+  static func objectCount(inStats text: String) -> Int? {
+    guard
+      let line = text.split(separator: "\n").first(where: {
+        $0.hasPrefix("scene: ")
+      }),
+      let counts = line.split(separator: ";").first?.split(separator: ":")
+        .last
+    else { return nil }
+    var total = 0
+    for part in counts.split(separator: ",") {
+      guard let number = part.split(separator: " ").first.flatMap({ Int($0) })
+      else { return nil }
+      total += number
+    }
+    return total
   }
 
   /// The seconds of a `render: 0.1234 s, 45.6 Mrays/s` line.
