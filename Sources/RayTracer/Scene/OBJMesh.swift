@@ -31,7 +31,21 @@ public struct OBJMesh: Hashable, Sendable {
   /// or not finite add nothing; a vertex whose sum is zero gets the zero
   /// normal, for which a hit falls back to the face's own normal.
   public func smoothed(_ rule: MeshNormals = .unitMean) -> OBJMesh {
-    guard normals.isEmpty, !triangles.isEmpty else { return self }
+    guard let normals = smoothedNormals(rule) else { return self }
+    var result = self
+    result.normals = normals
+    result.triangles = triangles.map {
+      var face = $0
+      face.normalIndices = $0.vertexIndices
+      return face
+    }
+    return result
+  }
+
+  /// The normal per vertex of `smoothed`, or nil when `smoothed` leaves
+  /// the mesh as it is (it has `vn` lines, or no faces).
+  func smoothedNormals(_ rule: MeshNormals) -> [Vector3<Double>]? {
+    guard normals.isEmpty, !triangles.isEmpty else { return nil }
     var sums = [Vector3<Double>](repeating: .zero, count: vertices.count)
     for face in triangles {
       let (a, b, c) = (
@@ -45,16 +59,9 @@ public struct OBJMesh: Hashable, Sendable {
       sums[b] += weighted
       sums[c] += weighted
     }
-    var result = self
-    result.normals = sums.map {
+    return sums.map {
       $0.maxMagnitude > 0 && $0.isFinite ? $0.normalized() : .zero
     }
-    result.triangles = triangles.map {
-      var face = $0
-      face.normalIndices = $0.vertexIndices
-      return face
-    }
-    return result
   }
 
   /// The course loader's reading of `a/b` faces in a file that has both
