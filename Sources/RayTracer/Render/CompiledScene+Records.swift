@@ -72,15 +72,18 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
   func normal(
     of ray: CameraRay<Scalar>, normals: Triangle<Scalar>.VertexNormals?
   ) -> Vector3<Scalar> {
-    let geometric = geometricNormal ?? .zero
-    guard let normals else { return geometric }
+    // The geometric normal only where it is the answer: found again from
+    // the vertices, it is not stored beside them.
+    guard let normals else { return geometricNormal ?? .zero }
     let prepared = WatertightRay(
       Ray(origin: ray.origin, direction: ray.direction))
     guard let hit = intersect(prepared, before: .infinity) else {
-      return geometric
+      return geometricNormal ?? .zero
     }
     let blended = normals.n0 * hit.u + normals.n1 * hit.v + normals.n2 * hit.w
-    guard blended.maxMagnitude > 0, blended.isFinite else { return geometric }
+    guard blended.maxMagnitude > 0, blended.isFinite else {
+      return geometricNormal ?? .zero
+    }
     return blended.normalized()
   }
 }
