@@ -23,13 +23,14 @@ public struct TriangleMesh<Scalar: RayScalar>: Hashable, Sendable {
   /// Three per triangle, into `vertices`, in the order of its vertices.
   public private(set) var vertexIndices: [Int32] = []
   /// Three per triangle into `normals`, −1s for a triangle without vertex
-  /// normals; empty when no triangle has them or `normalsFollowVertices`.
+  /// normals; may be empty when no triangle has them, and is empty when
+  /// `normalsFollowVertices`.
   public private(set) var normalIndices: [Int32] = []
   /// Whether every triangle's normals are those of its vertices,
   /// `normals[vertexIndices[…]]`: a smoothed mesh, a normal per vertex.
   public private(set) var normalsFollowVertices = false
   /// Three per triangle into `textureCoordinates`, −1s for a triangle
-  /// without; empty when no triangle has them.
+  /// without; may be empty when no triangle has them.
   public private(set) var textureIndices: [Int32] = []
   /// Every triangle's material, unless `materialIndices` gives one each.
   public private(set) var materialIndex = 0

@@ -103,15 +103,13 @@ extension OBJParser {
               + "all vertices of a face must use the same form")
         }
         if count >= 2 {
-          mesh.triangles.append(
-            OBJTriangle(
-              vertexIndices: SIMD3(
-                first.vertex, previous.vertex, reference.vertex),
-              normalIndices: first.normal < 0
-                ? nil : SIMD3(first.normal, previous.normal, reference.normal),
-              textureIndices: first.texture < 0
-                ? nil
-                : SIMD3(first.texture, previous.texture, reference.texture)))
+          mesh.append(
+            vertices: SIMD3(first.vertex, previous.vertex, reference.vertex),
+            normals: first.normal < 0
+              ? nil : SIMD3(first.normal, previous.normal, reference.normal),
+            texture: first.texture < 0
+              ? nil
+              : SIMD3(first.texture, previous.texture, reference.texture))
         }
       } else {
         first = (
