@@ -13,9 +13,11 @@ extension CompiledScene {
     _ list: TriangleList<Double>, eye: Vector3<Double>
   ) -> [LargeTriangle] {
     let cameraRelative = Kernel.frameOrigin(eye: eye) == .zero
-    triangles.reserveCapacityOnHugePages(list.count)
+    // On ordinary pages: 2 MiB pages cost more to fault in once memory is
+    // fragmented (docs/PERFORMANCE.md, "Large meshes").
+    triangles.reserveCapacity(list.count)
     triangleMaterials.reserveCapacity(list.count)
-    triangleNormalIndices.reserveCapacityOnHugePages(list.count)
+    triangleNormalIndices.reserveCapacity(list.count)
     var large: [LargeTriangle] = []
     for mesh in list.parts {
       let framed = Self.map(mesh.vertices) {
@@ -23,7 +25,15 @@ extension CompiledScene {
       }
       let normalBase = vertexNormals.count
       if mesh.normalsFollowVertices || !mesh.normalIndices.isEmpty {
-        vertexNormals += mesh.normals.map { Vector3<Scalar>($0) }
+        if vertexNormals.isEmpty, Scalar.self == Double.self {
+          // A Double render's normals are the model's: shared, not copied
+          // (a cast, `as?`, copied them element by element). The types are
+          // the same, so the cast of the array is the array itself.
+          vertexNormals = unsafeBitCast(
+            mesh.normals, to: [Vector3<Scalar>].self)
+        } else {
+          vertexNormals += mesh.normals.map { Vector3<Scalar>($0) }
+        }
       }
       func normalIndex(_ index: Int) -> Int32 {
         Int32(truncatingIfNeeded: normalBase + index)

@@ -141,4 +141,3 @@ final class OBJMeshTests: XCTestCase {
       obj.vertexIndices.withUnsafeBufferPointer { $0.baseAddress })
   }
 }
-
