@@ -102,6 +102,35 @@ public struct OBJMesh: Sendable {
     }
   }
 
+  /// Appends `other`'s elements after this mesh's, and its faces, whose
+  /// indices already count this mesh's elements (the second half of a
+  /// file, `OBJReader.parseInHalves`).
+  mutating func append(contentsOf other: OBJMesh) {
+    let (previous, added) = (vertexIndices.count, other.vertexIndices.count)
+    vertices += other.vertices
+    normals += other.normals
+    textureCoordinates += other.textureCoordinates
+    vertexIndices += other.vertexIndices
+    func merge(_ indices: inout [Int32], _ others: [Int32]) {
+      guard !indices.isEmpty || !others.isEmpty else { return }
+      if indices.isEmpty { indices = Array(repeating: -1, count: previous) }
+      if others.isEmpty {
+        indices += repeatElement(-1, count: added)
+      } else {
+        indices += others
+      }
+    }
+    merge(&normalIndices, other.normalIndices)
+    merge(&textureIndices, other.textureIndices)
+  }
+
+  /// Drops the index entries past `counts` (vertex, normal, texture).
+  mutating func truncateIndices(to counts: (Int, Int, Int)) {
+    vertexIndices.removeLast(vertexIndices.count - counts.0)
+    normalIndices.removeLast(normalIndices.count - counts.1)
+    textureIndices.removeLast(textureIndices.count - counts.2)
+  }
+
   /// Whether any face gives texture coordinates.
   public var hasTextureCoordinates: Bool {
     stride(from: 0, to: textureIndices.count, by: 3).contains {
