@@ -13,7 +13,8 @@
 /// error with its line and column, are the sequential parse's.
 extension OBJReader {
   /// Files from this size are read on two threads, where the machine has
-  /// two processors (measured: docs/PERFORMANCE.md, "Large meshes").
+  /// two processors: the scene parser's (`SceneParser.concurrentBytes`),
+  /// not measured for OBJ files (docs/PERFORMANCE.md, "Large meshes").
   static let splitThreshold = 1 << 20
 
   /// The mesh of `bytes` read in two halves, or nil when the file has no
