@@ -77,7 +77,7 @@ extension LengthScale {
       case .sphere(let sphere): add(sphere)
       case .plane(let plane): add(plane)
       case .triangle(let triangle): add(triangle)
-      case .mesh(let mesh): for triangle in mesh.triangles { add(triangle) }
+      case .mesh(let mesh): add(mesh)
       case .group(let group):
         for child in group.objects { measure(child) }
       case .transform: add(Group([object]).flattened())
@@ -88,7 +88,7 @@ extension LengthScale {
     mutating func add(_ all: Primitives<Double>) {
       for sphere in all.spheres { add(sphere) }
       for plane in all.planes { add(plane) }
-      for triangle in all.triangles { add(triangle) }
+      for mesh in all.triangles.parts { add(mesh) }
       for ellipsoid in all.transformedSpheres {
         largest = Swift.max(largest, ellipsoid.largestLength)
         let axis = ellipsoid.shortestAxis
@@ -107,9 +107,25 @@ extension LengthScale {
       radiusSquared = Swift.min(radiusSquared, sphere.radius * sphere.radius)
     }
 
+    /// Every triangle of `mesh`, by its vertices alone.
+    mutating func add(_ mesh: TriangleMesh<Double>) {
+      for index in mesh.indices { add(mesh.vertices(at: index)) }
+    }
+
     mutating func add(_ triangle: Triangle<Double>) {
-      largest = Swift.max(largest, triangle.largestLength)
-      let (edge, reach) = LengthScale.edgeAndReach(triangle, eye: eye)
+      add((triangle.v0, triangle.v1, triangle.v2))
+    }
+
+    mutating func add(
+      _ vertices: (Vector3<Double>, Vector3<Double>, Vector3<Double>)
+    ) {
+      // As `Triangle.largestLength`, in the same order.
+      largest = Swift.max(
+        largest,
+        Swift.max(
+          vertices.0.maxMagnitude, vertices.1.maxMagnitude,
+          vertices.2.maxMagnitude))
+      let (edge, reach) = LengthScale.edgeAndReach(vertices, eye: eye)
       guard edge > 0 else { return }
       edgeSquared = Swift.min(edgeSquared, edge * edge)
       edgeSquaredReach = Swift.min(edgeSquaredReach, edge * edge * reach)
@@ -137,7 +153,15 @@ extension LengthScale {
   static func edgeAndReach(_ triangle: Triangle<Double>, eye: Vector3<Double>)
     -> (edge: Double, reach: Double)
   {
-    let (a, b, c) = (triangle.v0, triangle.v1, triangle.v2)
+    edgeAndReach((triangle.v0, triangle.v1, triangle.v2), eye: eye)
+  }
+
+  /// `edgeAndReach` of the triangle with vertices `vertices`.
+  static func edgeAndReach(
+    _ vertices: (Vector3<Double>, Vector3<Double>, Vector3<Double>),
+    eye: Vector3<Double>
+  ) -> (edge: Double, reach: Double) {
+    let (a, b, c) = vertices
     return (
       Swift.max(
         (b - a).maxMagnitude, (c - b).maxMagnitude, (a - c).maxMagnitude),

@@ -79,7 +79,7 @@ public enum LengthScale {
     case .plane(let plane): body(.plane(plane))
     case .triangle(let triangle): body(.triangle(triangle))
     case .mesh(let mesh):
-      for triangle in mesh.triangles { body(.triangle(triangle)) }
+      for triangle in mesh { body(.triangle(triangle)) }
     case .group(let group):
       for child in group.objects { forEachPrimitive(in: child, body) }
     case .transform: Group([object]).flattened().forEach(body)
@@ -176,7 +176,7 @@ extension Primitives {
     var result = Primitives()
     result.spheres = spheres.map { $0.scaled(by: factor) }
     result.planes = planes.map { $0.scaled(by: factor) }
-    result.triangles = triangles.map { $0.scaled(by: factor) }
+    result.triangles = triangles.mapParts { $0.scaled(by: factor) }
     result.transformedSpheres = transformedSpheres.map {
       TransformedSphere(
         sphere: $0.sphere, matrix: $0.matrix.rowsScaled(by: factor),
@@ -203,7 +203,7 @@ extension SceneObject {
     case .plane(let plane): .plane(plane.scaled(by: factor))
     case .triangle(let triangle): .triangle(triangle.scaled(by: factor))
     case .mesh(let mesh):
-      .mesh(TriangleMesh(mesh.triangles.map { $0.scaled(by: factor) }))
+      .mesh(mesh.scaled(by: factor))
     case .group(let group): .group(group.scaled(by: factor))
     case .transform(let transform):
       .transform(

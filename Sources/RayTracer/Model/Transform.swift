@@ -78,7 +78,8 @@ extension TransformedSphere: Intersectable {
 public struct Primitives<Scalar: RayScalar>: Sendable {
   public var spheres: [Sphere<Scalar>] = []
   public var planes: [Plane<Scalar>] = []
-  public var triangles: [Triangle<Scalar>] = []
+  /// Loose triangles and meshes in file order.
+  public var triangles = TriangleList<Scalar>()
   public var transformedSpheres: [TransformedSphere<Scalar>] = []
 }
 
@@ -112,7 +113,9 @@ extension Group {
   public init(_ all: Primitives<Scalar>) {
     var objects: [SceneObject] = all.spheres.map { .sphere($0) }
     objects += all.planes.map { .plane($0) }
-    objects += all.triangles.map { .triangle($0) }
+    // Each run of loose triangles as a mesh of them: hit as the triangles
+    // one by one (`TriangleMesh`).
+    objects += all.triangles.parts.map { .mesh($0) }
     objects += all.transformedSpheres.map {
       .transform(
         Transform(
@@ -153,14 +156,14 @@ extension Group {
     // Counted first so that each array is allocated once: growing the
     // array of 10⁶ spheres by doubling copied it over and over, and made
     // this a tenth of compiling the scene. A transformed sphere is counted
-    // as a sphere, which it mostly stays.
-    var counts = (spheres: 0, planes: 0, triangles: 0)
+    // as a sphere, which it mostly stays. Triangles need no count: a
+    // mesh joins the list whole (`TriangleList`).
+    var counts = (spheres: 0, planes: 0)
     func count(_ object: SceneObject<Scalar>) {
       switch object {
       case .sphere: counts.spheres += 1
       case .plane: counts.planes += 1
-      case .triangle: counts.triangles += 1
-      case .mesh(let mesh): counts.triangles += mesh.triangles.count
+      case .triangle, .mesh: break
       case .group(let group): for child in group.objects { count(child) }
       case .transform(let inner): count(inner.object)
       }
@@ -174,7 +177,6 @@ extension Group {
     }
     result.spheres.reserveCapacityOnHugePages(counts.spheres)
     result.planes.reserveCapacity(counts.planes)
-    result.triangles.reserveCapacity(counts.triangles)
     func collect(
       _ object: SceneObject<Scalar>,
       _ transform: (Matrix4<Scalar>, Matrix4<Scalar>)?
@@ -213,20 +215,9 @@ extension Group {
         }
         result.triangles.append(triangle.moved(by: matrix))
       case .mesh(let mesh):
-        guard let (matrix, _) = transform else {
-          // The scene's only triangles: the mesh's own array, shared.
-          if result.triangles.isEmpty
-            && mesh.triangles.count == counts.triangles
-          {
-            result.triangles = mesh.triangles
-          } else {
-            result.triangles.append(contentsOf: mesh.triangles)
-          }
-          return
-        }
-        for triangle in mesh.triangles {
-          result.triangles.append(triangle.moved(by: matrix))
-        }
+        // Untransformed, the mesh's own storage, shared.
+        result.triangles.append(
+          transform.map { mesh.moved(by: $0.0) } ?? mesh)
       case .group(let group):
         for child in group.objects { collect(child, transform) }
       case .transform(let inner):

@@ -3,10 +3,9 @@
 /// one by one with t from their plane, so that the search of every other
 /// triangle runs as it did before they existed.
 extension CompiledScene {
-  /// A large triangle as compiled: its record, the scene's triangle (for
-  /// its material and texture coordinates) and its plane.
+  /// A large triangle as compiled: its record, its shading and its plane.
   typealias LargeTriangle = (
-    record: TriangleRecord<Scalar>, triangle: Triangle<Double>,
+    record: TriangleRecord<Scalar>, shading: TriangleShading<Scalar>,
     plane: LargeTrianglePlane<Scalar>
   )
 
@@ -14,8 +13,8 @@ extension CompiledScene {
   /// hierarchy is built over those).
   mutating func appendLargeTriangles(_ large: [LargeTriangle]) {
     ordinaryTriangleCount = triangles.count
-    for (record, triangle, plane) in large {
-      appendTriangle(record, triangle)
+    for (record, shading, plane) in large {
+      appendTriangle(record, shading)
       trianglePlanes.append(plane)
     }
   }

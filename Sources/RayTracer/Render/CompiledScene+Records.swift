@@ -1,21 +1,22 @@
-/// A triangle as the loop tests it: vertices in the kernel's frame.
+/// A triangle as the loop tests it: vertices in the kernel's frame. Its
+/// shading (material, vertex normals, texture coordinates) is kept beside
+/// the records (`CompiledScene.triangleNormalIndices`), read once per
+/// pixel rather than carried through every test.
 struct TriangleRecord<Scalar: RayScalar>: Sendable {
   var v0: Vector3<Scalar>
   var v1: Vector3<Scalar>
   var v2: Vector3<Scalar>
-  var normals: Triangle<Scalar>.VertexNormals?
-  /// The winding's unit normal; nil for a degenerate triangle.
-  var geometricNormal: Vector3<Scalar>?
 
-  init(
-    v0: Vector3<Scalar>, v1: Vector3<Scalar>, v2: Vector3<Scalar>,
-    normals: Triangle<Scalar>.VertexNormals?
-  ) {
+  init(v0: Vector3<Scalar>, v1: Vector3<Scalar>, v2: Vector3<Scalar>) {
     self.v0 = v0
     self.v1 = v1
     self.v2 = v2
-    self.normals = normals
-    geometricNormal = Triangle(v0, v1, v2).geometricNormal
+  }
+
+  /// The winding's unit normal (`Triangle.geometricNormal`); nil for a
+  /// degenerate triangle.
+  var geometricNormal: Vector3<Scalar>? {
+    Triangle(v0, v1, v2).geometricNormal
   }
 
   /// The barycentric weights of v0, v1, v2 where `ray` hits (the same
@@ -65,24 +66,24 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
     return covered ? t : nil
   }
 
-  /// The normal where `ray` hits: the barycentrics are found again (the
-  /// same computation as the hit's, so the same values).
-  func normal(of ray: CameraRay<Scalar>) -> Vector3<Scalar> {
-    let geometric = geometricNormal ?? .zero
-    guard normals != nil else { return geometric }
+  /// The normal where `ray` hits, from the vertex normals `normals` (nil
+  /// for flat shading): the barycentrics are found again (the same
+  /// computation as the hit's, so the same values).
+  func normal(
+    of ray: CameraRay<Scalar>, normals: Triangle<Scalar>.VertexNormals?
+  ) -> Vector3<Scalar> {
+    // The geometric normal only where it is the answer: found again from
+    // the vertices, it is not stored beside them.
+    guard let normals else { return geometricNormal ?? .zero }
     let prepared = WatertightRay(
       Ray(origin: ray.origin, direction: ray.direction))
     guard let hit = intersect(prepared, before: .infinity) else {
-      return geometric
+      return geometricNormal ?? .zero
     }
-    return normal(u: hit.u, v: hit.v, w: hit.w)
-  }
-
-  func normal(u: Scalar, v: Scalar, w: Scalar) -> Vector3<Scalar> {
-    let geometric = geometricNormal ?? .zero
-    guard let normals else { return geometric }
-    let blended = normals.n0 * u + normals.n1 * v + normals.n2 * w
-    guard blended.maxMagnitude > 0, blended.isFinite else { return geometric }
+    let blended = normals.n0 * hit.u + normals.n1 * hit.v + normals.n2 * hit.w
+    guard blended.maxMagnitude > 0, blended.isFinite else {
+      return geometricNormal ?? .zero
+    }
     return blended.normalized()
   }
 }
@@ -120,22 +121,45 @@ struct EllipsoidRecord<Kernel: IntersectionKernel>: Sendable {
   }
 }
 
+/// Per compiled triangle, the indices of its vertex normals in
+/// `CompiledScene.vertexNormals`, or −1s for flat shading.
+struct TriangleNormalIndices: Sendable {
+  var n0: Int32
+  var n1: Int32
+  var n2: Int32
+
+  static var none: TriangleNormalIndices { .init(n0: -1, n1: -1, n2: -1) }
+}
+
+/// What shading reads of a compiled triangle besides its record.
+struct TriangleShading<Scalar: RayScalar>: Sendable {
+  var material: Int32
+  var normals: TriangleNormalIndices
+  /// Only for textured renders.
+  var textureCoordinates: Triangle<Scalar>.TextureCoordinates?
+}
+
 extension CompiledScene {
-  /// Appends a compiled triangle with the model triangle's material and,
-  /// for a textured render, its texture coordinates.
+  /// Appends a compiled triangle with its material, normals and, for a
+  /// textured render, its texture coordinates.
   mutating func appendTriangle(
-    _ record: TriangleRecord<Scalar>, _ triangle: Triangle<Double>
+    _ record: TriangleRecord<Scalar>, _ shading: TriangleShading<Scalar>
   ) {
     triangles.append(record)
-    triangleMaterials.append(
-      Int32(truncatingIfNeeded: triangle.materialIndex))
+    triangleMaterials.append(shading.material)
+    triangleNormalIndices.append(shading.normals)
     if !textures.isEmpty {
-      triangleTextureCoordinates.append(
-        triangle.textureCoordinates.map {
-          Triangle<Scalar>.TextureCoordinates(
-            TextureCoordinate($0.t0), TextureCoordinate($0.t1),
-            TextureCoordinate($0.t2))
-        })
+      triangleTextureCoordinates.append(shading.textureCoordinates)
     }
+  }
+
+  /// The vertex normals of compiled triangle `index`, or nil.
+  @inline(__always)
+  func vertexNormals(ofTriangle index: Int) -> Triangle<Scalar>.VertexNormals? {
+    let normals = triangleNormalIndices[index]
+    guard normals.n0 >= 0 else { return nil }
+    return Triangle.VertexNormals(
+      vertexNormals[Int(normals.n0)], vertexNormals[Int(normals.n1)],
+      vertexNormals[Int(normals.n2)])
   }
 }

@@ -8,7 +8,7 @@ extension CompiledScene {
   public static var triangleProjectionThreshold: Int { 12 }
 
   /// Builds the BVH over the ordinary triangles and puts them, their
-  /// materials and texture coordinates into its order (the large ones
+  /// materials, normals and texture coordinates into its order (the large ones
   /// after them stay where they are): at compile time, or when
   /// `ScreenTiles` declines a scene whose triangles overlap too much on
   /// screen.
@@ -31,6 +31,7 @@ extension CompiledScene {
     }
     bvh.arrange(&triangles)
     bvh.arrange(&triangleMaterials)
+    bvh.arrange(&triangleNormalIndices)
     if !triangleTextureCoordinates.isEmpty {
       bvh.arrange(&triangleTextureCoordinates)
     }

@@ -34,6 +34,11 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// Triangles in the kernel's frame, in hierarchy order when there is one.
   var triangles: [TriangleRecord<Scalar>] = []
   var triangleMaterials: [Int32] = []
+  /// Per triangle, where its vertex normals are in `vertexNormals`.
+  var triangleNormalIndices: [TriangleNormalIndices] = []
+  /// The meshes' normals in the render's precision, shared by their
+  /// triangles as in the model.
+  var vertexNormals: [Vector3<Scalar>] = []
   /// Per triangle, its texture coordinates: only for textured renders.
   var triangleTextureCoordinates: [Triangle<Scalar>.TextureCoordinates?] = []
   /// The triangles before this index are searched by the watertight
@@ -205,46 +210,10 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     _ all: consuming Primitives<Double>, eye: Vector3<Double>,
     hierarchyThreshold: Int, projectionThreshold: Int
   ) {
-    let cameraRelative = Kernel.frameOrigin(eye: eye) == .zero
-    func frame(_ point: Vector3<Double>) -> Vector3<Scalar> {
-      guard cameraRelative else { return Vector3(point) }
-      func component(_ a: Double, _ b: Double) -> Scalar {
-        let difference = Compensated.twoSum(a, -b)
-        return CameraRelative.narrowed(difference.sum, difference.error)
-      }
-      return Vector3(
-        component(point.x, eye.x), component(point.y, eye.y),
-        component(point.z, eye.z))
-    }
-    triangles.reserveCapacityOnHugePages(all.triangles.count)
-    triangleMaterials.reserveCapacity(all.triangles.count)
-    var large: [LargeTriangle] = []
-    for triangle in all.triangles {
-      let record = TriangleRecord<Scalar>(
-        v0: frame(triangle.v0), v1: frame(triangle.v1), v2: frame(triangle.v2),
-        normals: triangle.vertexNormals.map {
-          Triangle<Scalar>.VertexNormals(
-            Vector3($0.n0), Vector3($0.n1), Vector3($0.n2))
-        })
-      // A degenerate triangle is never hit: leaving it out changes nothing.
-      guard let normal = record.geometricNormal else { continue }
-      if cameraRelative,
-        let plane = TrianglePlane.make(
-          relative: (record.v0, record.v1, record.v2), normal: normal,
-          v0: triangle.v0, origin: eye)
-      {
-        large.append(
-          (
-            record, triangle,
-            LargeTrianglePlane(
-              plane, relative: (record.v0, record.v1, record.v2))
-          ))
-        continue
-      }
-      appendTriangle(record, triangle)
-    }
-    // The model's triangles are not needed again: freed before the build.
-    all.triangles = []
+    let large = compileTriangles(all.triangles, eye: eye)
+    // The model's triangles are not needed again: a transformed mesh's
+    // placed copy is freed before the build.
+    all.triangles = TriangleList()
     let ordinary = triangles.count
     appendLargeTriangles(large)
     if ordinary >= projectionThreshold {
@@ -369,7 +338,8 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     case .sphere(let index): Kernel.normal(spheres[index], ray, t: t)
     case .plane(let index): Kernel.normal(planes[index])
     case .triangle(let index):
-      triangles[index].normal(of: ray)
+      triangles[index].normal(
+        of: ray, normals: vertexNormals(ofTriangle: index))
     case .ellipsoid(let index):
       ellipsoids[index].matrix.transformNormal(
         Kernel.normal(

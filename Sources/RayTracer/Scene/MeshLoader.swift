@@ -42,17 +42,12 @@ enum MeshLoader {
       }
       mesh = reread
     }
-    // The triangles side by side in one array on 2 MiB pages, the scene's
-    // one entry for the file (`TriangleMesh`).
-    let smoothed = mesh.smoothed(normals)
-    var triangles: [Triangle<Double>] = []
-    triangles.reserveCapacityOnHugePages(smoothed.triangles.count)
-    for index in smoothed.triangles.indices {
-      triangles.append(
-        smoothed.triangle(at: index, materialIndex: materialIndex))
-    }
+    // The scene's one entry for the file, indexed as the file is
+    // (`TriangleMesh`).
+    let hasTextureCoordinates = mesh.hasTextureCoordinates
+    let triangles = TriangleMesh(
+      consume mesh, materialIndex: materialIndex, normals: normals)
     return Loaded(
-      object: .mesh(TriangleMesh(triangles)),
-      hasTextureCoordinates: mesh.hasTextureCoordinates)
+      object: .mesh(triangles), hasTextureCoordinates: hasTextureCoordinates)
   }
 }

@@ -103,15 +103,13 @@ extension OBJParser {
               + "all vertices of a face must use the same form")
         }
         if count >= 2 {
-          mesh.triangles.append(
-            OBJTriangle(
-              vertexIndices: SIMD3(
-                first.vertex, previous.vertex, reference.vertex),
-              normalIndices: first.normal < 0
-                ? nil : SIMD3(first.normal, previous.normal, reference.normal),
-              textureIndices: first.texture < 0
-                ? nil
-                : SIMD3(first.texture, previous.texture, reference.texture)))
+          mesh.append(
+            vertices: SIMD3(first.vertex, previous.vertex, reference.vertex),
+            normals: first.normal < 0
+              ? nil : SIMD3(first.normal, previous.normal, reference.normal),
+            texture: first.texture < 0
+              ? nil
+              : SIMD3(first.texture, previous.texture, reference.texture))
         }
       } else {
         first = (
@@ -169,6 +167,12 @@ extension OBJParser {
       vertexPart, of: token, .vertex, count: mesh.vertices.count)
     var normal: Int32 = -1
     var texture: Int32 = -1
+    if speculative && form == .vertexTexture
+      && mesh.textureCoordinates.isEmpty
+    {
+      // Texture or normal, by what the first half defines.
+      throw malformedFaceVertex(token)
+    }
     if form == .vertexTexture && mesh.textureCoordinates.isEmpty
       && !mesh.normals.isEmpty
     {
@@ -189,7 +193,7 @@ extension OBJParser {
 
   /// The 0-based index that the 1-based or negative index in `part` names,
   /// among `count` elements defined so far.
-  func resolve(
+  mutating func resolve(
     _ part: (start: Int, end: Int), of token: Token, _ element: Element,
     count: Int
   ) throws(SceneError) -> Int32 {
@@ -201,6 +205,19 @@ extension OBJParser {
         at: partToken,
         "expected an integer \(element.singular) index, found "
           + "'\(quote(partToken))'")
+    }
+    if speculative {
+      // A negative index counts back from what the first half defines.
+      guard written > 0 else { throw malformedFaceVertex(token) }
+      let before = written - count
+      switch element {
+      case .vertex: needed.vertices = Swift.max(needed.vertices, before)
+      case .normal: needed.normals = Swift.max(needed.normals, before)
+      case .textureCoordinate:
+        needed.textureCoordinates = Swift.max(
+          needed.textureCoordinates, before)
+      }
+      return Int32(truncatingIfNeeded: written - 1)
     }
     if written == 0 {
       throw error(

@@ -52,7 +52,9 @@ public enum OBJReader {
     } catch {
       throw SceneError(file: path, line: 0, column: 0, message: error.reason)
     }
-    return try parse(bytes: bytes, file: path, precision: precision)
+    return try parse(
+      bytes: bytes, file: path, precision: precision,
+      splitFrom: splitThreshold)
   }
 
   /// Parses `text`; `file` names it in messages.
@@ -62,11 +64,20 @@ public enum OBJReader {
     try parse(bytes: Array(text.utf8), file: file, precision: precision)
   }
 
-  /// Parses raw bytes, which need not be valid UTF-8.
+  /// Parses raw bytes, which need not be valid UTF-8; on two threads
+  /// (`parseInHalves`) from `splitFrom` bytes, given as `.max` for one
+  /// thread always and as less for tests, which split small files.
   static func parse(
-    bytes: [UInt8], file: String, precision: Precision = .double
+    bytes: [UInt8], file: String, precision: Precision = .double,
+    splitFrom: Int = .max
   ) throws(SceneError) -> OBJMesh {
     try bytes.withUnsafeBufferPointer { (buffer) throws(SceneError) in
+      if buffer.count >= splitFrom,
+        let mesh = try parseInHalves(
+          buffer, file: file, precision: precision)
+      {
+        return mesh
+      }
       var parser = OBJParser(bytes: buffer, file: file, precision: precision)
       return try parser.parse()
     }
@@ -87,6 +98,16 @@ struct OBJParser {
   /// Where the last token read ended, for "found end of line" messages.
   var lastEnd = (line: 1, column: 1)
   var mesh = OBJMesh()
+  /// Set for the second half of a file read on two threads
+  /// (`OBJReader.parseInHalves`), which does not know what the first half
+  /// defines: an index past the elements read so far is recorded in
+  /// `needed` rather than refused, and anything whose reading depends on
+  /// the first half (a negative index, `a/b` before any `vt` line) is an
+  /// error that stops the half there.
+  var speculative = false
+  /// In a speculative half, per kind of element, how many must come before
+  /// it for every index read to be valid.
+  var needed = (vertices: 0, normals: 0, textureCoordinates: 0)
 
   /// The statements that name, group or decorate geometry without changing
   /// it, and are skipped with their arguments.

@@ -119,19 +119,93 @@ final class TriangleMeshTests: XCTestCase {
     XCTAssertEqual(problem(.mesh(TriangleMesh([speck]))), asGroup)
   }
 
-  /// An untransformed mesh that is the scene's only triangles is not
-  /// copied when flattened: the primitives hold its own array.
-  func testFlattened_SharesTheOnlyMesh() {
+  /// An untransformed mesh is not copied when flattened: the primitives
+  /// hold its own storage, alone or beside loose triangles, which come
+  /// before and after it in file order.
+  func testFlattened_SharesTheMesh() {
     let triangles = fan(8)
-    let group = Group([.mesh(TriangleMesh(triangles))])
-    let flattened = group.flattened().triangles
-    XCTAssertEqual(
-      flattened.withUnsafeBufferPointer { $0.baseAddress },
-      triangles.withUnsafeBufferPointer { $0.baseAddress })
-    // Beside another triangle it is copied after it.
+    let mesh = TriangleMesh(triangles)
+    func storage(_ mesh: TriangleMesh<Double>) -> UnsafePointer<Int32>? {
+      mesh.vertexIndices.withUnsafeBufferPointer { $0.baseAddress }
+    }
+    let alone = Group([.mesh(mesh)]).flattened().triangles
+    XCTAssertEqual(alone.parts.map(storage), [storage(mesh)])
+    XCTAssertEqual(Array(alone), triangles)
     let beside = Group([
-      .triangle(triangles[0]), .mesh(TriangleMesh(triangles)),
+      .triangle(triangles[0]), .mesh(mesh), .triangle(triangles[1]),
     ]).flattened().triangles
-    XCTAssertEqual(beside, [triangles[0]] + triangles)
+    XCTAssertEqual(beside.parts.count, 3)
+    XCTAssertEqual(storage(beside.parts[1]), storage(mesh))
+    XCTAssertEqual(Array(beside), [triangles[0]] + triangles + [triangles[1]])
+  }
+
+  /// Triangles with and without vertex normals and texture coordinates, in
+  /// every order of the two, each with its own material.
+  func mixed() -> [Triangle<Double>] {
+    let plain = fan(6)
+    var triangles: [Triangle<Double>] = []
+    for (index, triangle) in plain.enumerated() {
+      var triangle = triangle
+      if index % 3 == 1 { triangle.vertexNormals = nil }
+      if index % 2 == 0 {
+        triangle.textureCoordinates = Triangle.TextureCoordinates(
+          TextureCoordinate(0, Double(index)), TextureCoordinate(1, 0.5),
+          TextureCoordinate(0.25, 1))
+      }
+      triangle.materialIndex = index * 5 + 1
+      triangles.append(triangle)
+    }
+    var flat = plain[0]
+    flat.vertexNormals = nil
+    return [flat] + triangles + [flat]
+  }
+
+  /// Loose triangles appended one by one come back as they went in.
+  func testAppend_GivesTheTrianglesBack() {
+    for triangles in [mixed(), fan(5), Array(mixed().suffix(3)), []] {
+      let mesh = TriangleMesh(triangles)
+      XCTAssertEqual(Array(mesh), triangles)
+      XCTAssertEqual(mesh.count, triangles.count)
+      for index in triangles.indices {
+        XCTAssertEqual(mesh.triangle(at: index), triangles[index])
+        XCTAssertEqual(mesh.material(at: index), triangles[index].materialIndex)
+      }
+    }
+  }
+
+  /// A smoothed mesh (normals by vertex) that gains a loose triangle keeps
+  /// its triangles' normals, with or without the new one's.
+  func testAppend_ToNormalsByVertex() throws {
+    let obj = try OBJReader.parse(
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0.5\nf 1 2 3\nf 2 4 3\n",
+      file: "quad.obj")
+    let smoothed = TriangleMesh(obj, materialIndex: 2, normals: .unitMean)
+    XCTAssertTrue(smoothed.normalsFollowVertices)
+    for extra in mixed().prefix(3) {
+      var mesh = smoothed
+      mesh.append(extra)
+      XCTAssertEqual(Array(mesh), Array(smoothed) + [extra])
+    }
+  }
+
+  /// Placed and scaled as a whole, the mesh gives the triangles placed and
+  /// scaled one by one (`Triangle.moved`, `scaled`), bit for bit.
+  func testMovedAndScaled_AsEachTriangle() throws {
+    let triangles = mixed()
+    let matrix =
+      Matrix4<Double>.translation(Vector3(1, 2, 3))
+      * Matrix4.rotationY(degrees: 30) * Matrix4.scale(Vector3(1e-40, 2, 0.5))
+    let mesh = TriangleMesh(triangles)
+    XCTAssertEqual(
+      Array(mesh.moved(by: matrix)), triangles.map { $0.moved(by: matrix) })
+    XCTAssertEqual(
+      Array(mesh.scaled(by: 0x1p-70)), triangles.map { $0.scaled(by: 0x1p-70) })
+    let obj = try OBJReader.parse(
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0.5\nf 1 2 3\nf 2 4 3\n",
+      file: "quad.obj")
+    let smoothed = TriangleMesh(obj, materialIndex: 2, normals: .unitMean)
+    XCTAssertEqual(
+      Array(smoothed.moved(by: matrix)),
+      smoothed.map { $0.moved(by: matrix) })
   }
 }

@@ -19,8 +19,14 @@ final class CompiledSceneTests: XCTestCase {
   /// with the hierarchy thresholds of `CompiledScene`'s defaults rather
   /// than the command line's.
   func compare(_ name: String, width: Int = 48, height: Int = 36) throws {
-    let scene = try SceneParser.parse(
-      contentsOf: "\(Self.scenesFolder)/\(name).txt")
+    try compare(
+      SceneParser.parse(contentsOf: "\(Self.scenesFolder)/\(name).txt"),
+      name, width: width, height: height)
+  }
+
+  func compare(
+    _ scene: Scene, _ name: String, width: Int = 48, height: Int = 36
+  ) throws {
     let settings = RenderSettings(
       width: width, height: height, outputs: [.depth, .normals], threads: 2)
     let buffers = Renderer.render(
@@ -58,6 +64,46 @@ final class CompiledSceneTests: XCTestCase {
 
   func testCompiled_MatchesTheModel_NestedGroups() throws {
     try compare("spheres-only")
+  }
+
+  /// Meshes with and without vertex normals and texture coordinates,
+  /// placed by transforms and not, beside loose triangles and a twin of
+  /// one mesh (ties), compiled from the meshes' indexed storage.
+  func testCompiled_MatchesTheModel_MeshesAndLooseTriangles() throws {
+    let obj = try OBJReader.parse(
+      TriangleMeshOBJTests.mixed, file: "mixed.obj")
+    let given = TriangleMesh(obj, materialIndex: 1, normals: .unitMean)
+    let smoothed = TriangleMesh(
+      try OBJReader.parse(TriangleMeshOBJTests.plain, file: "plain.obj"),
+      materialIndex: 0, normals: .areaWeighted)
+    let loose = Triangle<Double>(
+      Vector3(-0.5, 0, 0.2), Vector3(0.3, 0.1, 0.6), Vector3(0, 0.8, 0.3),
+      vertexNormals: .init(
+        Vector3(0, 0, 1), Vector3(0, 1, 1), Vector3(1, 0, 1)),
+      materialIndex: 2)
+    let matrix =
+      Matrix4<Double>.translation(Vector3(-1.5, 0.25, -0.5))
+      * Matrix4.rotationY(degrees: 40) * Matrix4.scale(Vector3(1, 0.5, 2))
+    let camera = try XCTUnwrap(
+      PerspectiveCamera<Double>(
+        center: Vector3(0.3, 0.4, 6), direction: Vector3(0, 0, -1),
+        up: Vector3(0, 1, 0), angle: 40))
+    let root = Group([
+      .triangle(loose), .mesh(given),
+      .transform(
+        try XCTUnwrap(Transform(matrix: matrix, object: .mesh(given)))),
+      .mesh(smoothed), .triangle(loose),
+      .group(Group([.mesh(given), .triangle(loose)])),
+      .transform(
+        try XCTUnwrap(
+          Transform(
+            matrix: Matrix4.translation(Vector3(1.2, -1, 0)),
+            object: .mesh(smoothed)))),
+    ])
+    try compare(
+      Scene(
+        camera: camera, materials: Array(repeating: .defaultWhite, count: 3),
+        root: root), "meshes")
   }
 
   func testFlattened_BakesSimilaritiesAndKeepsEllipsoids() throws {

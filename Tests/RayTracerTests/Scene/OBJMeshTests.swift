@@ -107,4 +107,37 @@ final class OBJMeshTests: XCTestCase {
       error, 4 * Double.ulpOfOne, "\(label): \(got) against \(want)",
       file: file, line: line)
   }
+
+  /// Faces kept as index arrays come back as the faces that went in, with
+  /// and without normals and texture coordinates in any order; the index
+  /// arrays of faces without stay empty until a face gives some.
+  func testTriangles_IndexArraysRoundTrip() {
+    let faces = [
+      OBJTriangle(vertexIndices: SIMD3(0, 1, 2)),
+      OBJTriangle(
+        vertexIndices: SIMD3(2, 1, 3), normalIndices: SIMD3(0, 0, 1)),
+      OBJTriangle(
+        vertexIndices: SIMD3(3, 1, 0), textureIndices: SIMD3(1, 2, 0)),
+      OBJTriangle(
+        vertexIndices: SIMD3(0, 2, 3), normalIndices: SIMD3(1, 1, 0),
+        textureIndices: SIMD3(2, 2, 1)),
+    ]
+    for count in 0...faces.count {
+      let mesh = OBJMesh(triangles: Array(faces.prefix(count)))
+      XCTAssertEqual(mesh.triangles, Array(faces.prefix(count)))
+      XCTAssertEqual(mesh.triangleCount, count)
+      XCTAssertEqual(mesh.normalIndices.isEmpty, count < 2)
+      XCTAssertEqual(mesh.textureIndices.isEmpty, count < 3)
+      XCTAssertEqual(mesh.hasTextureCoordinates, count >= 3)
+    }
+  }
+
+  /// The scene's mesh shares the file's vertex indices: no copy.
+  func testTriangleMesh_SharesTheIndices() throws {
+    let obj = try OBJReader.parse(Self.hinge, file: "hinge.obj")
+    let mesh = TriangleMesh(obj, materialIndex: 0, normals: .unitMean)
+    XCTAssertEqual(
+      mesh.vertexIndices.withUnsafeBufferPointer { $0.baseAddress },
+      obj.vertexIndices.withUnsafeBufferPointer { $0.baseAddress })
+  }
 }

@@ -72,7 +72,7 @@ final class BoundingVolumeHierarchyArrangeTests: XCTestCase {
           center + generator.unitVector(Double.self) * size
         }
         records.append(
-          TriangleRecord(v0: corner(), v1: corner(), v2: corner(), normals: nil))
+          TriangleRecord(v0: corner(), v1: corner(), v2: corner()))
       }
       // A few exact duplicates, so that ties occur.
       for index in stride(from: 0, to: 300, by: 10) {

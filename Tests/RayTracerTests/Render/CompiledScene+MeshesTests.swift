@@ -1,0 +1,84 @@
+import XCTest
+
+@testable import RayTracer
+
+/// Triangles compiled straight from the meshes' indexed storage
+/// (`CompiledScene.compileTriangles`): each record, material and normal the
+/// one its model triangle gives, in scene order.
+final class CompiledSceneMeshesTests: XCTestCase {
+  func scene() throws -> Scene {
+    let given = TriangleMesh(
+      try OBJReader.parse(TriangleMeshOBJTests.mixed, file: "mixed.obj"),
+      materialIndex: 1, normals: .unitMean)
+    let smoothed = TriangleMesh(
+      try OBJReader.parse(TriangleMeshOBJTests.plain, file: "plain.obj"),
+      materialIndex: 2, normals: .unitMean)
+    let loose = Triangle<Double>(
+      Vector3(-0.5, 0, 0.2), Vector3(0.3, 0.1, 0.6), Vector3(0, 0.8, 0.3),
+      vertexNormals: .init(
+        Vector3(0, 0, 1), Vector3(0, 1, 1), Vector3(1, 0, 1)),
+      materialIndex: 0)
+    let camera = try XCTUnwrap(
+      PerspectiveCamera<Double>(
+        center: Vector3(0.3, 0.4, 60), direction: Vector3(0, 0, -1),
+        up: Vector3(0, 1, 0), angle: 5))
+    return Scene(
+      camera: camera, materials: Array(repeating: .defaultWhite, count: 3),
+      root: Group([
+        .mesh(smoothed), .triangle(loose), .mesh(given), .triangle(loose),
+      ]))
+  }
+
+  func check<Kernel: IntersectionKernel>(_: Kernel.Type) throws {
+    let scene = try scene()
+    // Projected, so kept in scene order; none is large (`TrianglePlane`)
+    // from 60 units away, none degenerate.
+    let compiled = CompiledScene<Kernel>(scene, triangleProjectionThreshold: 0)
+    let model = Array(scene.root.flattened().triangles)
+    XCTAssertEqual(compiled.triangleCount, model.count)
+    XCTAssertEqual(compiled.ordinaryTriangleCount, model.count)
+    let eye = scene.camera.center
+    let relative = Kernel.frameOrigin(eye: eye) == .zero
+    for (index, triangle) in model.enumerated() {
+      let record = compiled.triangles[index]
+      func frame(_ p: Vector3<Double>) -> Vector3<Kernel.Scalar> {
+        CompiledScene<Kernel>.frame(p, eye: eye, cameraRelative: relative)
+      }
+      XCTAssertEqual(record.v0, frame(triangle.v0), "\(index)")
+      XCTAssertEqual(record.v1, frame(triangle.v1), "\(index)")
+      XCTAssertEqual(record.v2, frame(triangle.v2), "\(index)")
+      XCTAssertEqual(
+        compiled.materialIndex(of: .triangle(index)), triangle.materialIndex)
+      let normals = compiled.vertexNormals(ofTriangle: index)
+      XCTAssertEqual(normals?.n0, triangle.vertexNormals.map { .init($0.n0) })
+      XCTAssertEqual(normals?.n1, triangle.vertexNormals.map { .init($0.n1) })
+      XCTAssertEqual(normals?.n2, triangle.vertexNormals.map { .init($0.n2) })
+    }
+  }
+
+  func testRecords_AsTheModelTriangles() throws {
+    try check(StableKernel<Double>.self)
+    try check(StableKernel<Float>.self)
+    try check(NaiveKernel<Double>.self)
+    try check(NaiveKernel<Float>.self)
+  }
+
+  /// A Double render shares the normals of a scene's only mesh with
+  /// normals with the model; a Float render converts them.
+  func testNormals_SharedInDouble() throws {
+    var scene = try scene()
+    guard case .mesh(let smoothed) = scene.root.objects[0] else {
+      return XCTFail("the scene starts with a mesh")
+    }
+    let flat = Triangle<Double>(
+      Vector3(-0.5, 0, 0.2), Vector3(0.3, 0.1, 0.6), Vector3(0, 0.8, 0.3))
+    scene.root = Group([.triangle(flat), .mesh(smoothed)])
+    func address<T>(_ array: [T]) -> UnsafeRawPointer? {
+      array.withUnsafeBufferPointer { UnsafeRawPointer($0.baseAddress) }
+    }
+    let double = CompiledScene<StableKernel<Double>>(scene)
+    XCTAssertEqual(address(double.vertexNormals), address(smoothed.normals))
+    let float = CompiledScene<StableKernel<Float>>(scene)
+    XCTAssertEqual(float.vertexNormals, smoothed.normals.map { .init($0) })
+  }
+}
