@@ -32,71 +32,38 @@ extension ImageStyle {
     depthRows(buffers, range: depthRange(buffers.depth, given: given)).image
   }
 
-  /// `depthImage` a row at a time, for the `range` that `depthRange` gave
-  /// (or, for levels stored by the render, the range it was given).
+  /// `depthImage` a row at a time, for the `range` that `depthRange` gave.
   public func depthRows<S: RayScalar>(
     _ buffers: RenderBuffers<S>, range: ClosedRange<Double>?
   ) -> PixelRows {
-    let width = buffers.width
-    if !buffers.depthLevels.isEmpty {
-      let levels = buffers.depthLevels
-      return PixelRows(width: width, height: buffers.height) { row, out in
-        levels.withUnsafeBufferPointer { levels in
-          for column in 0..<width {
-            let level = levels[row * width + column]
-            out[3 * column] = level
-            out[3 * column + 1] = level
-            out[3 * column + 2] = level
-          }
-        }
-      }
-    }
-    let mapping = DepthMapping<S>(style: self, range: range)
-    let depth = buffers.depth
+    let near = S(range?.lowerBound ?? 0)
+    let span = S(range.map { $0.upperBound - $0.lowerBound } ?? 1)
+    let far = S(range?.upperBound ?? 0)
+    let (width, depth) = (buffers.width, buffers.depth)
+    let style = self
     return PixelRows(width: width, height: buffers.height) { row, out in
       depth.withUnsafeBufferPointer { depth in
         for column in 0..<width {
-          let level = mapping.level(depth[row * width + column])
+          let t = depth[row * width + column]
+          var level: UInt8 = 0
+          if t.isFinite {
+            let fraction = span > 0 ? (t - near) / span : 0
+            switch style {
+            case .course:
+              // The course's 255 − ⌊255·fraction⌋: inverted after
+              // truncating, one level above truncating 1 − fraction
+              // wherever 255·fraction is not a whole number.
+              if range != nil && t <= far {
+                level = 255 - style.quantize(fraction)
+              }
+            case .mit:
+              level = style.quantize(fraction)
+            }
+          }
           out[3 * column] = level
           out[3 * column + 1] = level
           out[3 * column + 2] = level
         }
-      }
-    }
-  }
-
-  /// A depth's grey level in a style for a range (nil: no hit qualified,
-  /// every level 0 in the course style): what `depthImage` writes and, for
-  /// a given range, the render stores (`RenderBuffers.depthLevels`).
-  public struct DepthMapping<S: RayScalar>: Sendable {
-    let style: ImageStyle
-    let hasRange: Bool
-    let near: S
-    let span: S
-    let far: S
-
-    public init(style: ImageStyle, range: ClosedRange<Double>?) {
-      self.style = style
-      hasRange = range != nil
-      near = S(range?.lowerBound ?? 0)
-      span = S(range.map { $0.upperBound - $0.lowerBound } ?? 1)
-      far = S(range?.upperBound ?? 0)
-    }
-
-    /// The level of depth `t` (+∞ for a miss).
-    @inline(__always)
-    public func level(_ t: S) -> UInt8 {
-      guard t.isFinite else { return 0 }
-      let fraction = span > 0 ? (t - near) / span : 0
-      switch style {
-      case .course:
-        // The course's 255 − ⌊255·fraction⌋: inverted after truncating,
-        // one level above truncating 1 − fraction wherever 255·fraction
-        // is not a whole number.
-        guard hasRange && t <= far else { return 0 }
-        return 255 - style.quantize(fraction)
-      case .mit:
-        return style.quantize(fraction)
       }
     }
   }

@@ -15,10 +15,6 @@ public struct RenderBuffers<Scalar: RayScalar>: Sendable {
   /// `normals` and `color` are then empty.
   public var normalBytes: [UInt8] = []
   public var colorBytes: [UInt8] = []
-  /// The depth image's grey levels, one byte a pixel, for a depth only
-  /// written as an 8-bit image whose range was given
-  /// (`RenderSettings.quantizedDepthRange`); `depth` is then empty.
-  public var depthLevels: [UInt8] = []
 
   public init(
     width: Int, height: Int, depth: [Scalar] = [],

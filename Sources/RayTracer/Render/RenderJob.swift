@@ -86,16 +86,10 @@ public enum RenderJob {
     settings.outputs = files.reduce(into: []) { $0.formUnion($1.kind) }
     // Normals and colours that only 8-bit files show are rendered straight
     // into their pixels: no buffer of the render's precision for them.
-    // Depth too when its range is given; otherwise it keeps its values, for
-    // its image's range comes from all of them.
+    // (Depth keeps its values: its image's range comes from all of them.)
     for kind: RenderOutputs in [.normals, .shaded]
     where files.allSatisfy({ $0.kind != kind || $0.format.isEightBit }) {
       settings.quantizedOutputs.insert(kind)
-    }
-    if let depthRange,
-      files.allSatisfy({ $0.kind != .depth || $0.format.isEightBit })
-    {
-      settings.quantizedDepthRange = depthRange
     }
     let textures =
       settings.outputs.contains(.shaded)

@@ -52,12 +52,6 @@ public struct RenderSettings: Sendable {
   /// (`RenderBuffers.normalBytes`, `colorBytes`), three bytes a pixel
   /// instead of three numbers of the render's precision.
   public var quantizedOutputs: RenderOutputs = []
-  /// The depth image's given range, when depth is only written as an
-  /// 8-bit image and its range is known before the render (the mit
-  /// style's `-depth MIN MAX FILE`): the render then stores each pixel's
-  /// grey level (`RenderBuffers.depthLevels`, one byte a pixel) instead of
-  /// its depth in the render's precision.
-  public var quantizedDepthRange: ClosedRange<Double>?
   /// Renders of the same image after the first, in the same process: the
   /// render time reported is then their median, a warm render as peers
   /// that time repeated renders report it (`raytrace bench`). The files

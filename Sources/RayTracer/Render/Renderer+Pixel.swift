@@ -43,12 +43,12 @@ extension Renderer {
     let wantsNormals = targets.wantsNormals
     let shadeCentre = targets.wantsColor && settings.samples == 1
     guard let hit else {
-      if wantsDepth { targets.setDepth(.infinity, at: pixel) }
+      if wantsDepth { targets.depth[pixel] = .infinity }
       if wantsNormals { targets.setNormal(.zero, at: pixel) }
       if shadeCentre { targets.setColor(scene.background, at: pixel) }
       return
     }
-    if wantsDepth { targets.setDepth(hit.t * scene.lengthScale, at: pixel) }
+    if wantsDepth { targets.depth[pixel] = hit.t * scene.lengthScale }
     guard wantsNormals || shadeCentre else { return }
     let normal = self.normal(
       of: hit, ray: ray, scene: scene, sphereRecord: sphereRecord,

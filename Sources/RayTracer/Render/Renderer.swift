@@ -127,18 +127,10 @@ public enum Renderer {
     var color: [RGB<S>] = []
     var normalBytes: [UInt8] = []
     var colorBytes: [UInt8] = []
-    // A depth only shown in an 8-bit image of a given range is stored as
-    // its grey levels.
-    let depthRange = settings.quantizedDepthRange
-    let wantsDepth = outputs.contains(.depth)
-    var depthLevels: [UInt8] = []
     let depth = uninitializedArray(
-      of: S.self, count: wantsDepth && depthRange == nil ? count : 0
+      of: S.self, count: outputs.contains(.depth) ? count : 0
     ) {
       depth in
-     depthLevels = uninitializedArray(
-      of: UInt8.self, count: wantsDepth && depthRange != nil ? count : 0
-     ) { depthLevels in
       normals = uninitializedArray(
         of: Vector3<S>.self, count: counts(.normals).values
       ) { normals in
@@ -154,9 +146,6 @@ public enum Renderer {
           let targets = Targets(
             depth: depth, normals: normals, color: color,
             normalBytes: normalBytes, colorBytes: colorBytes,
-            depthLevels: depthLevels,
-            depthMapping: ImageStyle.DepthMapping(
-              style: settings.style, range: depthRange),
             style: settings.style)
           // Screen x per column, once per render rather than a division
           // per pixel.
@@ -176,14 +165,12 @@ public enum Renderer {
          }
         }
       }
-     }
     }
     var buffers = RenderBuffers(
       width: width, height: height, depth: depth, normals: normals, color: color
     )
     buffers.normalBytes = normalBytes
     buffers.colorBytes = colorBytes
-    buffers.depthLevels = depthLevels
     return buffers
   }
 
@@ -208,21 +195,9 @@ public enum Renderer {
     let color: UnsafeMutableBufferPointer<RGB<S>>
     let normalBytes: UnsafeMutableBufferPointer<UInt8>
     let colorBytes: UnsafeMutableBufferPointer<UInt8>
-    let depthLevels: UnsafeMutableBufferPointer<UInt8>
-    let depthMapping: ImageStyle.DepthMapping<S>
     let style: ImageStyle
 
-    var wantsDepth: Bool { depth.count > 0 || depthLevels.count > 0 }
-
-    /// Stores a pixel's depth (+∞ for a miss), as its value or its level.
-    @inline(__always)
-    func setDepth(_ t: S, at pixel: Int) {
-      if depth.count > 0 {
-        depth[pixel] = t
-      } else {
-        depthLevels[pixel] = depthMapping.level(t)
-      }
-    }
+    var wantsDepth: Bool { depth.count > 0 }
     var wantsNormals: Bool { normals.count > 0 || normalBytes.count > 0 }
     var wantsColor: Bool { color.count > 0 || colorBytes.count > 0 }
 

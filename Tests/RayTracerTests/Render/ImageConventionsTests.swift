@@ -42,8 +42,7 @@ final class ImageConventionsTests: XCTestCase {
   }
 
   /// Normals and colours rendered straight into 8-bit pixels
-  /// (`RenderSettings.quantizedOutputs`), and depth into grey levels for a
-  /// given range (`quantizedDepthRange`), are the images made from the
+  /// (`RenderSettings.quantizedOutputs`) are the images made from the
   /// values, byte for byte: every project scene, both styles, one sample
   /// and supersampled, spheres through screen tiles and triangles too.
   func testQuantizedOutputs_SameImagesAsFromValues() throws {
@@ -70,25 +69,6 @@ final class ImageConventionsTests: XCTestCase {
           XCTAssertEqual(
             style.colorImage(pixels).bytes, style.colorImage(values).bytes,
             label)
-          // A given depth range: the levels stored by the render are the
-          // image of the values, for ranges inside, around and beside the
-          // depths seen (so levels clamp at both ends) and a range of no
-          // width.
-          let seen = style.depthRange(values.depth, given: nil) ?? 1...2
-          let middle = (seen.lowerBound + seen.upperBound) / 2
-          for range in [
-            seen, middle...seen.upperBound + 1, seen.lowerBound - 1...middle,
-            seen.upperBound + 1...seen.upperBound + 5, middle...middle,
-          ] {
-            settings.quantizedDepthRange = range
-            let levels = Renderer.render(compiled, settings: settings)
-            XCTAssertTrue(levels.depth.isEmpty)
-            XCTAssertEqual(levels.depthLevels.count, 23 * 17)
-            XCTAssertEqual(
-              style.depthImage(levels, range: range),
-              style.depthImage(values, range: range), "\(label) \(range)")
-          }
-          settings.quantizedDepthRange = nil
         }
       }
     }
