@@ -180,7 +180,7 @@ public struct WatertightRay<S: RayScalar>: Hashable, Sendable {
   public var shearY: S
   public var shearZ: S
 
-  @inlinable @inline(__always)
+  @inlinable
   public init(_ ray: Ray<S>) {
     let d = ray.direction
     let x = d.x.magnitude
