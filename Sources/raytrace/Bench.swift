@@ -53,6 +53,9 @@ struct Bench: ParsableCommand {
   mutating func validate() throws {
     guard !Raytrace.defersValidation else { return }
     guard runs >= 1 else { throw ValidationError("--runs must be at least 1.") }
+    if let peer, let problem = PeerBenchmark.problem(withScript: peer) {
+      throw ValidationError("--peer: \(problem).")
+    }
   }
 
   func run() throws {

@@ -38,6 +38,13 @@ public struct PeerBenchmark: Sendable {
     public var frozen = false
   }
 
+  /// Why `script` cannot be run, or nil if it can be read: checked before
+  /// the benchmark starts rather than after its first workload.
+  public static func problem(withScript script: String) -> String? {
+    access(script, R_OK) == 0
+      ? nil : "cannot read '\(script)': \(String(cString: strerror(errno)))"
+  }
+
   /// Whether the peer is asked to render `workload` at all.
   public static func accepts(_ workload: Workload) -> Bool {
     if case .randomSpheres(let count) = workload.source {

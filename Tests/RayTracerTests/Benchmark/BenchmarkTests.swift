@@ -48,6 +48,13 @@ final class BenchmarkTests: XCTestCase {
     XCTAssertTrue(PeerBenchmark.accepts(workload(.randomMesh(5_000_000))))
   }
 
+  func testAMissingPeerScriptIsNamedBeforeTheRun() throws {
+    let problem = try XCTUnwrap(
+      PeerBenchmark.problem(withScript: "/nonexistent/peer_mitsuba.py"))
+    XCTAssertTrue(problem.contains("'/nonexistent/peer_mitsuba.py'"), problem)
+    XCTAssertNil(PeerBenchmark.problem(withScript: #filePath))
+  }
+
   func testReferenceWorkloadsNeedTheirFolder() {
     let bunny = Workload.standard.first {
       if case .reference = $0.source { return true }
