@@ -142,25 +142,26 @@ public struct TriangleMesh<Scalar: RayScalar>: Hashable, Sendable {
   /// Triangle `index`'s indices into `normals`, or nil when it has none.
   @inline(__always)
   func normalCorners(_ index: Int) -> (Int, Int, Int)? {
-    if normalsFollowVertices { return corners(index) }
-    guard !normalIndices.isEmpty, normalIndices[3 * index] >= 0 else {
-      return nil
-    }
-    return (
-      Int(normalIndices[3 * index]), Int(normalIndices[3 * index + 1]),
-      Int(normalIndices[3 * index + 2])
-    )
+    normalsFollowVertices
+      ? corners(index) : Self.corners(index, in: normalIndices)
   }
 
   /// Triangle `index`'s indices into `textureCoordinates`, or nil.
   @inline(__always)
   func textureCorners(_ index: Int) -> (Int, Int, Int)? {
-    guard !textureIndices.isEmpty, textureIndices[3 * index] >= 0 else {
-      return nil
-    }
+    Self.corners(index, in: textureIndices)
+  }
+
+  /// Triangle `index`'s three entries of a per-corner index array, or nil
+  /// when the array is empty or the triangle's entries are −1 (none).
+  @inline(__always)
+  private static func corners(_ index: Int, in indices: [Int32])
+    -> (Int, Int, Int)?
+  {
+    guard !indices.isEmpty, indices[3 * index] >= 0 else { return nil }
     return (
-      Int(textureIndices[3 * index]), Int(textureIndices[3 * index + 1]),
-      Int(textureIndices[3 * index + 2])
+      Int(indices[3 * index]), Int(indices[3 * index + 1]),
+      Int(indices[3 * index + 2])
     )
   }
 
