@@ -63,7 +63,8 @@ struct Bench: ParsableCommand {
       executable: currentExecutable(), dataFolder: data, runs: runs,
       referenceFolder: reference)
     let peerBenchmark = peer.map { PeerBenchmark(script: $0, runs: runs) }
-    let peerHeader = peerBenchmark == nil ? "" : " Mitsuba 3 (Mrays/s) | ÷ Mitsuba |"
+    let peerHeader =
+      peerBenchmark == nil ? "" : " Mitsuba 3 (Mrays/s) | ÷ Mitsuba |"
     print(
       "| workload | size | objects | threads | outputs | samples | "
         + "render, warm (ms) | Mrays/s | render, first (ms) | end to end (s) | "

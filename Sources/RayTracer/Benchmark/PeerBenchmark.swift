@@ -60,8 +60,7 @@ public struct PeerBenchmark: Sendable {
     for frozen in [false, true] {
       var result = try run(scene: scene, workload, freeze: frozen)
       result.frozen = frozen
-      if best.map({ result.megaraysPerSecond > $0.megaraysPerSecond }) ?? true
-      {
+      if best.map({ result.megaraysPerSecond > $0.megaraysPerSecond }) ?? true {
         best = result
       }
     }
@@ -75,9 +74,12 @@ public struct PeerBenchmark: Sendable {
       "python3", script, scene, "--size", "\(workload.width)",
       "\(workload.height)", "--runs", "\(runs)", "--json",
     ]
-    arguments += workload.samples > 1
+    arguments +=
+      workload.samples > 1
       ? ["--spp", "\(workload.samples)"] : ["--centre"]
-    if let threads = workload.threads { arguments += ["--threads", "\(threads)"] }
+    if let threads = workload.threads {
+      arguments += ["--threads", "\(threads)"]
+    }
     if freeze { arguments.append("--freeze") }
     // Through env, which finds python3 on the PATH (posix_spawn does not).
     let outcome = try Benchmark.spawn("/usr/bin/env", arguments)

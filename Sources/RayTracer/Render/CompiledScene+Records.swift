@@ -80,12 +80,33 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
     guard let hit = intersect(prepared, before: .infinity) else {
       return geometricNormal ?? .zero
     }
-    let blended = normals.n0 * hit.u + normals.n1 * hit.v + normals.n2 * hit.w
+    return normal(
+      weights: TriangleWeights(u: hit.u, v: hit.v, w: hit.w), normals: normals)
+  }
+
+  /// The normal for a hit's barycentric weights (`intersect`'s u, v, w),
+  /// interpolated from the vertex normals `normals`.
+  func normal(
+    weights: TriangleWeights<Scalar>,
+    normals: Triangle<Scalar>.VertexNormals
+  ) -> Vector3<Scalar> {
+    let blended =
+      normals.n0 * weights.u + normals.n1 * weights.v + normals.n2 * weights.w
     guard blended.maxMagnitude > 0, blended.isFinite else {
       return geometricNormal ?? .zero
     }
     return blended.normalized()
   }
+}
+
+/// The barycentric weights of v0, v1, v2 at a triangle's hit, as the
+/// watertight test gives them (`TriangleRecord.intersect`): kept by the
+/// screen tiles' search from the test that found the nearest hit, so that
+/// the normal need not run the test again (the same values either way).
+struct TriangleWeights<Scalar: RayScalar>: Sendable {
+  var u: Scalar
+  var v: Scalar
+  var w: Scalar
 }
 
 /// Triangles tested against one prepared ray, for the hierarchy.

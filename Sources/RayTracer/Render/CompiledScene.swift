@@ -331,15 +331,22 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     }
   }
 
-  func normal(of what: Nearest, _ ray: CameraRay<Scalar>, t: Scalar) -> Vector3<
-    Scalar
-  > {
+  /// The unit normal of the hit `what` at `t`; for a triangle, from the
+  /// barycentric `weights` of its test when given (`TriangleWeights`).
+  func normal(
+    of what: Nearest, _ ray: CameraRay<Scalar>, t: Scalar,
+    weights: TriangleWeights<Scalar>? = nil
+  ) -> Vector3<Scalar> {
     switch what {
     case .sphere(let index): Kernel.normal(spheres[index], ray, t: t)
     case .plane(let index): Kernel.normal(planes[index])
     case .triangle(let index):
-      triangles[index].normal(
-        of: ray, normals: vertexNormals(ofTriangle: index))
+      if let weights, let normals = vertexNormals(ofTriangle: index) {
+        triangles[index].normal(weights: weights, normals: normals)
+      } else {
+        triangles[index].normal(
+          of: ray, normals: vertexNormals(ofTriangle: index))
+      }
     case .ellipsoid(let index):
       ellipsoids[index].matrix.transformNormal(
         Kernel.normal(

@@ -130,8 +130,7 @@ extension ImageStyle {
   /// A normal's pixel: |n| per component (course) or (n + 1)/2 (mit),
   /// quantized.
   @inlinable
-  public func pixel<S: RayScalar>(normal: Vector3<S>) -> (UInt8, UInt8, UInt8)
-  {
+  public func pixel<S: RayScalar>(normal: Vector3<S>) -> (UInt8, UInt8, UInt8) {
     switch self {
     case .course:
       pixel(

@@ -15,7 +15,8 @@ extension Renderer {
     ray: CameraRay<Kernel.Scalar>, pixel: Int, scene: CompiledScene<Kernel>,
     settings: RenderSettings, targets: Targets<Kernel.Scalar>,
     sphereRecord: Kernel.SphereRecord? = nil,
-    sphereMemo: Kernel.SphereHitMemo = Kernel.noMemo
+    sphereMemo: Kernel.SphereHitMemo = Kernel.noMemo,
+    triangleWeights: TriangleWeights<Kernel.Scalar>? = nil
   ) {
     if !scene.layers.isEmpty,
       let (layer, layerHit, layerRay) = scene.nearerInLayers(ray, than: hit)
@@ -27,7 +28,8 @@ extension Renderer {
     }
     write(
       hit, ray: ray, pixel: pixel, scene: scene, settings: settings,
-      targets: targets, sphereRecord: sphereRecord, sphereMemo: sphereMemo)
+      targets: targets, sphereRecord: sphereRecord, sphereMemo: sphereMemo,
+      triangleWeights: triangleWeights)
   }
 
   /// `store` for a hit of `scene` itself.
@@ -37,7 +39,8 @@ extension Renderer {
     ray: CameraRay<Kernel.Scalar>, pixel: Int, scene: CompiledScene<Kernel>,
     settings: RenderSettings, targets: Targets<Kernel.Scalar>,
     sphereRecord: Kernel.SphereRecord? = nil,
-    sphereMemo: Kernel.SphereHitMemo = Kernel.noMemo
+    sphereMemo: Kernel.SphereHitMemo = Kernel.noMemo,
+    triangleWeights: TriangleWeights<Kernel.Scalar>? = nil
   ) {
     let wantsDepth = targets.wantsDepth
     let wantsNormals = targets.wantsNormals
@@ -52,7 +55,7 @@ extension Renderer {
     guard wantsNormals || shadeCentre else { return }
     let normal = self.normal(
       of: hit, ray: ray, scene: scene, sphereRecord: sphereRecord,
-      sphereMemo: sphereMemo)
+      sphereMemo: sphereMemo, triangleWeights: triangleWeights)
     if wantsNormals { targets.setNormal(normal, at: pixel) }
     if shadeCentre {
       targets.setColor(
@@ -70,10 +73,12 @@ extension Renderer {
     of hit: (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest),
     ray: CameraRay<Kernel.Scalar>, scene: CompiledScene<Kernel>,
     sphereRecord: Kernel.SphereRecord?,
-    sphereMemo: Kernel.SphereHitMemo = Kernel.noMemo
+    sphereMemo: Kernel.SphereHitMemo = Kernel.noMemo,
+    triangleWeights: TriangleWeights<Kernel.Scalar>? = nil
   ) -> Vector3<Kernel.Scalar> {
     guard case .sphere(let index) = hit.what else {
-      return scene.normal(of: hit.what, ray, t: hit.t)
+      return scene.normal(
+        of: hit.what, ray, t: hit.t, weights: triangleWeights)
     }
     return Kernel.normal(
       sphereRecord ?? scene.spheres[index], ray, t: hit.t, memo: sphereMemo)
@@ -85,7 +90,8 @@ extension Renderer {
   static func sampleColor<Kernel: IntersectionKernel>(
     _ hit: (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest)?,
     ray: CameraRay<Kernel.Scalar>, scene: CompiledScene<Kernel>,
-    sphereRecord: Kernel.SphereRecord? = nil, attenuate: Bool
+    sphereRecord: Kernel.SphereRecord? = nil,
+    triangleWeights: TriangleWeights<Kernel.Scalar>? = nil, attenuate: Bool
   ) -> RGB<Kernel.Scalar> {
     if !scene.layers.isEmpty,
       let (layer, layerHit, layerRay) = scene.nearerInLayers(ray, than: hit)
@@ -100,7 +106,8 @@ extension Renderer {
     return shade(
       hit, ray: ray,
       normal: normal(
-        of: hit, ray: ray, scene: scene, sphereRecord: sphereRecord),
+        of: hit, ray: ray, scene: scene, sphereRecord: sphereRecord,
+        triangleWeights: triangleWeights),
       scene: scene, attenuate: attenuate)
   }
 

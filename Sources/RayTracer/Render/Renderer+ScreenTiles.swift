@@ -50,14 +50,14 @@ extension Renderer {
             entries, triangleEntries, rows: rows.count,
             columns: tileColumns.count, scene: scene, rays: rays,
             nearestT: nearestT, nearestEntry: nearestEntry
-          ) { slot, hit, entry in
+          ) { slot, hit, entry, weights in
             let row = rows.lowerBound + slot / ScreenTiles<Kernel>.tileWidth
             let column =
               tileColumns.lowerBound + slot % ScreenTiles<Kernel>.tileWidth
             store(
               hit, ray: rays[slot], pixel: row * settings.width + column,
               scene: scene, settings: settings, targets: targets,
-              sphereRecord: entry?.record)
+              sphereRecord: entry?.record, triangleWeights: weights)
           }
         }
       }
@@ -161,12 +161,13 @@ extension Renderer {
                   entries, triangleEntries, rows: rows.count,
                   columns: tileColumns.count, scene: scene, rays: rays,
                   nearestT: nearestT, nearestEntry: nearestEntry
-                ) { slot, hit, entry in
+                ) { slot, hit, entry, weights in
                   // A sphere found here is the entry's: only other kinds
                   // are searched after it.
                   sums[slot] += sampleColor(
                     hit, ray: rays[slot], scene: scene,
-                    sphereRecord: entry?.record, attenuate: attenuate)
+                    sphereRecord: entry?.record, triangleWeights: weights,
+                    attenuate: attenuate)
                 }
               }
               for row in rows {
@@ -189,7 +190,8 @@ extension Renderer {
   /// rays of its box's pixels, in order with the flat loop's strict `<`),
   /// then the ellipsoids; or, when the scene does not project its triangles,
   /// the scene's own search after the spheres. `body` gets each slot, its
-  /// nearest hit and the sphere entry found, if any.
+  /// nearest hit, the sphere entry found, if any, and for a hit on an
+  /// ordinary projected triangle the barycentric weights its test gave.
   @inline(__always)
   static func finishSearches<Kernel: IntersectionKernel>(
     _ entries: ArraySlice<ScreenTiles<Kernel>.Entry>,
@@ -201,7 +203,7 @@ extension Renderer {
     _ body:
       (
         Int, (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest)?,
-        ScreenTiles<Kernel>.Entry?
+        ScreenTiles<Kernel>.Entry?, TriangleWeights<Kernel.Scalar>?
       ) -> Void
   ) {
     typealias S = Kernel.Scalar
@@ -222,7 +224,7 @@ extension Renderer {
               rays[slot],
               after: NearestHit(
                 nearestT[slot], entry.map { .sphere(Int($0.sphere)) })),
-            entry)
+            entry, nil)
         }
       }
       return
@@ -233,53 +235,84 @@ extension Renderer {
       withUnsafeTemporaryAllocation(
         of: WatertightRay<S>.self, capacity: capacity
       ) { prepared in
-        for row in 0..<rows {
-          for column in 0..<columns {
-            let slot = row * tileWidth + column
-            let ray = rays[slot]
-            var search = Search(
-              nearestT[slot], sphere(slot).map { .sphere(Int($0.sphere)) })
-            scene.testPlanes(ray, &search)
-            (searches.baseAddress! + slot).initialize(to: search)
-            (prepared.baseAddress! + slot).initialize(
-              to: WatertightRay(
-                Ray(origin: ray.origin, direction: ray.direction)))
+        // Per slot, the ordinary triangle whose test last became the
+        // nearest hit (−1: none) and the weights that test gave: every hit
+        // a test returns is strictly nearer than the best, so the last one
+        // is the nearest triangle's, unless a large triangle (which takes
+        // t from its plane, without weights) came after it.
+        withUnsafeTemporaryAllocation(
+          of: WeightedTriangle<S>.self, capacity: capacity
+        ) { weighted in
+          for row in 0..<rows {
+            for column in 0..<columns {
+              let slot = row * tileWidth + column
+              let ray = rays[slot]
+              var search = Search(
+                nearestT[slot], sphere(slot).map { .sphere(Int($0.sphere)) })
+              scene.testPlanes(ray, &search)
+              (searches.baseAddress! + slot).initialize(to: search)
+              (prepared.baseAddress! + slot).initialize(
+                to: WatertightRay(
+                  Ray(origin: ray.origin, direction: ray.direction)))
+              (weighted.baseAddress! + slot).initialize(
+                to: WeightedTriangle(triangle: -1))
+            }
           }
-        }
-        // The large triangles (`TrianglePlane`) come after the ordinary
-        // ones in index order, as in the search without tiles, and take t
-        // from their planes.
-        let ordinary = scene.ordinaryTriangleCount
-        scene.triangles.withUnsafeBufferPointer { records in
-          for entry in triangleEntries {
-            let index = Int(entry.triangle)
-            let record = records[index]
-            let plane =
-              index < ordinary ? nil : scene.trianglePlanes[index - ordinary]
-            for row in Int(entry.firstRow)...Int(entry.lastRow) {
-              for column in Int(entry.firstColumn)...Int(entry.lastColumn) {
-                let slot = row * tileWidth + column
-                searches[slot].test(.triangle(index)) {
-                  if let plane {
-                    TriangleRecord.t(
-                      prepared[slot], records.baseAddress! + index,
-                      plane: plane, before: $0)
-                  } else {
-                    record.intersect(prepared[slot], before: $0)?.t
+          // The large triangles (`TrianglePlane`) come after the ordinary
+          // ones in index order, as in the search without tiles, and take t
+          // from their planes.
+          let ordinary = scene.ordinaryTriangleCount
+          scene.triangles.withUnsafeBufferPointer { records in
+            for entry in triangleEntries {
+              let index = Int(entry.triangle)
+              let record = records[index]
+              let plane =
+                index < ordinary ? nil : scene.trianglePlanes[index - ordinary]
+              for row in Int(entry.firstRow)...Int(entry.lastRow) {
+                for column in Int(entry.firstColumn)...Int(entry.lastColumn) {
+                  let slot = row * tileWidth + column
+                  searches[slot].test(.triangle(index)) {
+                    if let plane {
+                      let t = TriangleRecord.t(
+                        prepared[slot], records.baseAddress! + index,
+                        plane: plane, before: $0)
+                      if t != nil { weighted[slot].triangle = -1 }
+                      return t
+                    }
+                    guard let hit = record.intersect(prepared[slot], before: $0)
+                    else { return nil }
+                    weighted[slot] = WeightedTriangle(
+                      triangle: Int32(truncatingIfNeeded: index),
+                      weights: TriangleWeights(u: hit.u, v: hit.v, w: hit.w))
+                    return hit.t
                   }
                 }
               }
             }
           }
-        }
-        for row in 0..<rows {
-          for column in 0..<columns {
-            let slot = row * tileWidth + column
-            scene.testEllipsoids(rays[slot], &searches[slot])
-            body(slot, searches[slot].hit, sphere(slot))
+          for row in 0..<rows {
+            for column in 0..<columns {
+              let slot = row * tileWidth + column
+              scene.testEllipsoids(rays[slot], &searches[slot])
+              let hit = searches[slot].hit
+              var found: TriangleWeights<S>?
+              if case .triangle(let index)? = hit?.what,
+                weighted[slot].triangle == Int32(truncatingIfNeeded: index)
+              {
+                found = weighted[slot].weights
+              }
+              body(slot, hit, sphere(slot), found)
+            }
           }
         }
       }
     }
   }
+}
+
+/// The ordinary triangle whose test last gave a pixel's nearest hit in the
+/// screen tiles' search (−1: none), and the weights it gave.
+struct WeightedTriangle<Scalar: RayScalar> {
+  var triangle: Int32
+  var weights = TriangleWeights<Scalar>(u: 0, v: 0, w: 0)
 }

@@ -10,7 +10,8 @@ final class PNGEncoderPiecesTests: XCTestCase {
   /// The whole zlib stream of a PNG's IDAT chunks, inflated by zlib, which
   /// checks the header's check bits and the Adler-32 at the end.
   func inflate(_ png: [UInt8]) throws -> [UInt8] {
-    let data = PNGEncoderTests.chunks(png).filter { $0.type == "IDAT" }.flatMap(\.data)
+    let data = PNGEncoderTests.chunks(png).filter { $0.type == "IDAT" }.flatMap(
+      \.data)
     var length = uLongf(64 << 20)
     var out = [UInt8](repeating: 0, count: Int(length))
     let status = uncompress(&out, &length, data, uLong(data.count))

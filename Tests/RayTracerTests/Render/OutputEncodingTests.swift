@@ -79,8 +79,10 @@ final class OutputEncodingTests: XCTestCase {
       for pixel in [0, 1, 13, 44] {
         let (column, row) = (pixel % 9, pixel / 9)
         XCTAssertTrue(
-          normalRows[column, row] == style.pixel(normal: buffers.normals[pixel]))
-        XCTAssertTrue(colorRows[column, row] == style.pixel(buffers.color[pixel]))
+          normalRows[column, row] == style.pixel(normal: buffers.normals[pixel])
+        )
+        XCTAssertTrue(
+          colorRows[column, row] == style.pixel(buffers.color[pixel]))
       }
     }
   }
