@@ -56,15 +56,10 @@ public struct PeerBenchmark: Sendable {
   /// The peer's better run of `scene` as `workload` sets it (size,
   /// threads, samples): as it is, and with `--freeze`.
   public func measure(scene: String, _ workload: Workload) throws -> Result {
-    var best: Result?
-    for frozen in [false, true] {
-      var result = try run(scene: scene, workload, freeze: frozen)
-      result.frozen = frozen
-      if best.map({ result.megaraysPerSecond > $0.megaraysPerSecond }) ?? true {
-        best = result
-      }
-    }
-    return best!
+    let plain = try run(scene: scene, workload, freeze: false)
+    var frozen = try run(scene: scene, workload, freeze: true)
+    frozen.frozen = true
+    return frozen.megaraysPerSecond > plain.megaraysPerSecond ? frozen : plain
   }
 
   private func run(scene: String, _ workload: Workload, freeze: Bool) throws

@@ -341,6 +341,8 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     case .sphere(let index): Kernel.normal(spheres[index], ray, t: t)
     case .plane(let index): Kernel.normal(planes[index])
     case .triangle(let index):
+      // Written as two lookups: a `switch` over the pair of optionals
+      // made mesh renders 9 % slower.
       if let weights, let normals = vertexNormals(ofTriangle: index) {
         triangles[index].normal(weights: weights, normals: normals)
       } else {

@@ -235,14 +235,14 @@ extension Renderer {
       withUnsafeTemporaryAllocation(
         of: WatertightRay<S>.self, capacity: capacity
       ) { prepared in
-        // Per slot, the ordinary triangle whose test last became the
-        // nearest hit (−1: none) and the weights that test gave: every hit
-        // a test returns is strictly nearer than the best, so the last one
-        // is the nearest triangle's, unless a large triangle (which takes
-        // t from its plane, without weights) came after it.
+        // Per slot, the weights of the last ordinary triangle test that
+        // gave a hit. Every hit a test returns is strictly nearer than the
+        // best and becomes it, so when the nearest hit is an ordinary
+        // triangle, the last such test was its own. (A large triangle takes
+        // t from its plane and gives no weights.)
         withUnsafeTemporaryAllocation(
-          of: WeightedTriangle<S>.self, capacity: capacity
-        ) { weighted in
+          of: TriangleWeights<S>.self, capacity: capacity
+        ) { weights in
           for row in 0..<rows {
             for column in 0..<columns {
               let slot = row * tileWidth + column
@@ -254,8 +254,6 @@ extension Renderer {
               (prepared.baseAddress! + slot).initialize(
                 to: WatertightRay(
                   Ray(origin: ray.origin, direction: ray.direction)))
-              (weighted.baseAddress! + slot).initialize(
-                to: WeightedTriangle(triangle: -1))
             }
           }
           // The large triangles (`TrianglePlane`) come after the ordinary
@@ -273,17 +271,14 @@ extension Renderer {
                   let slot = row * tileWidth + column
                   searches[slot].test(.triangle(index)) {
                     if let plane {
-                      let t = TriangleRecord.t(
+                      return TriangleRecord.t(
                         prepared[slot], records.baseAddress! + index,
                         plane: plane, before: $0)
-                      if t != nil { weighted[slot].triangle = -1 }
-                      return t
                     }
                     guard let hit = record.intersect(prepared[slot], before: $0)
                     else { return nil }
-                    weighted[slot] = WeightedTriangle(
-                      triangle: Int32(truncatingIfNeeded: index),
-                      weights: TriangleWeights(u: hit.u, v: hit.v, w: hit.w))
+                    weights[slot] = TriangleWeights(
+                      u: hit.u, v: hit.v, w: hit.w)
                     return hit.t
                   }
                 }
@@ -296,10 +291,8 @@ extension Renderer {
               scene.testEllipsoids(rays[slot], &searches[slot])
               let hit = searches[slot].hit
               var found: TriangleWeights<S>?
-              if case .triangle(let index)? = hit?.what,
-                weighted[slot].triangle == Int32(truncatingIfNeeded: index)
-              {
-                found = weighted[slot].weights
+              if case .triangle(let index)? = hit?.what, index < ordinary {
+                found = weights[slot]
               }
               body(slot, hit, sphere(slot), found)
             }
@@ -308,11 +301,4 @@ extension Renderer {
       }
     }
   }
-}
-
-/// The ordinary triangle whose test last gave a pixel's nearest hit in the
-/// screen tiles' search (−1: none), and the weights it gave.
-struct WeightedTriangle<Scalar: RayScalar> {
-  var triangle: Int32
-  var weights = TriangleWeights<Scalar>(u: 0, v: 0, w: 0)
 }

@@ -103,10 +103,16 @@ final class TriangleTilesTests: XCTestCase {
       let along = normal.cross(generator.unitVector(Double.self)).normalized()
       let across = normal.cross(along)
       let base = eye + normal * (size * 1e-5)
+      // With vertex normals, so that its normal is interpolated: its hits
+      // take t from its plane and come with no weights, which the normal
+      // must not take from an earlier triangle's test.
       triangles.append(
         Triangle(
           base + along * (10 * size), base - along * (10 * size),
           base + across * (10 * size) + along * size,
+          vertexNormals: .init(
+            normal, (normal + along * 0.5).normalized(),
+            (normal + across * 0.5).normalized()),
           materialIndex: 1))
     }
     var objects = triangles.map { SceneObject<Double>.triangle($0) }
