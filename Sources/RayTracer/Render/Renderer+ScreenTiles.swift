@@ -266,9 +266,21 @@ extension Renderer {
               let record = records[index]
               let plane =
                 index < ordinary ? nil : scene.trianglePlanes[index - ordinary]
+              // An ordinary triangle over more than a few pixels first
+              // looks at each ray through its edges' planes.
+              let sides =
+                plane == nil
+                  && (Int(entry.lastColumn) - Int(entry.firstColumn)
+                    + Int(entry.lastRow) - Int(entry.firstRow)) >= 2
+                ? TriangleEdgePlanes(
+                  record.v0, record.v1, record.v2, origin: scene.rayOrigin)
+                : nil
               for row in Int(entry.firstRow)...Int(entry.lastRow) {
                 for column in Int(entry.firstColumn)...Int(entry.lastColumn) {
                   let slot = row * tileWidth + column
+                  if let sides, sides.excludes(rays[slot].direction) {
+                    continue
+                  }
                   searches[slot].test(.triangle(index)) {
                     if let plane {
                       return TriangleRecord.t(
