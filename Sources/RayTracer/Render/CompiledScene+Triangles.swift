@@ -69,8 +69,11 @@ extension CompiledScene {
       Vector3<Double>(record.v2) - origin
     )
     let pad = 2 * Double(Self.trianglePad(record))
-    let distance = Swift.max(
-      corners.0.length, corners.1.length, corners.2.length)
+    // ‖·‖₁ bounds each corner's distance without a square root.
+    func size(_ p: Vector3<Double>) -> Double {
+      p.x.magnitude + p.y.magnitude + p.z.magnitude
+    }
+    let distance = Swift.max(size(corners.0), size(corners.1), size(corners.2))
     let slack = 64 * Double(Scalar.ulpOfOne)
     let reach = pad + slack * (distance + pad) + 1e-300
     return projection.pixelBox(

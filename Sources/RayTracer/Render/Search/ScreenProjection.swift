@@ -137,8 +137,8 @@ struct ScreenProjection: Sendable {
     reach ρ: Double, margin: Double
   ) -> PixelBox {
     let extents = (
-      extent(center: a, reach: ρ), extent(center: b, reach: ρ),
-      extent(center: c, reach: ρ)
+      cornerExtent(a, reach: ρ), cornerExtent(b, reach: ρ),
+      cornerExtent(c, reach: ρ)
     )
     switch extents {
     case (.behind, .behind, .behind):
@@ -161,6 +161,43 @@ struct ScreenProjection: Sendable {
     default:
       return whole
     }
+  }
+
+  /// `extent` for a ball whose radius is below a millionth of its
+  /// distance from the eye's plane (a triangle's corner and its rounding):
+  /// the centre's screen coordinates k = Pᵢ/P₃ and a bound on how far the
+  /// ball's other points project from them, instead of the ellipse.
+  ///
+  /// For q = p + e with |e| ≤ ρ, (Pᵢ + rᵢ·e)/(P₃ + r₃·e) − Pᵢ/P₃ =
+  /// (P₃ rᵢ·e − Pᵢ r₃·e)/(P₃(P₃ + r₃·e)), at most
+  /// ρ(|rᵢ| + |k| |r₃|)/P₃ · 1/(1 − 2⁻²⁰) when ρ|r₃| ≤ 2⁻²⁰P₃; the result is
+  /// padded as `screenInterval` pads its own (2⁻³⁰ of the scale of the
+  /// terms, with ‖p‖₁ for |p|), far beyond the rounding of k. Otherwise
+  /// `extent`.
+  @inline(__always)
+  func cornerExtent(_ p: Vector3<Double>, reach ρ: Double) -> Extent {
+    let p3 = r3.dot(p)
+    let extent = p.x.magnitude + p.y.magnitude + p.z.magnitude + ρ
+    guard p3 >= 0x1p20 * ρ * r3Length, extent.isFinite, ρ.isFinite else {
+      return self.extent(center: p, reach: ρ)
+    }
+    let inverseP3 = 1 / p3
+    func interval(_ axis: Axis) -> (lower: Double, upper: Double)? {
+      let pi = axis.row.dot(p)
+      let k = pi * inverseP3
+      let reach =
+        ρ * (axis.length + k.magnitude * r3Length) * inverseP3
+        * (1 + 0x1p-19)
+      let scale = (pi.magnitude + extent * (axis.length + r3Length)) * inverseP3
+      let pad = 0x1p-30 * condition * (1 + scale + scale * scale)
+      let (lower, upper) = (k - reach - pad, k + reach + pad)
+      guard lower.isFinite, upper.isFinite else { return nil }
+      return (lower, upper)
+    }
+    guard let x = interval(axes.x), let y = interval(axes.y) else {
+      return self.extent(center: p, reach: ρ)
+    }
+    return .within(x: x, y: y)
   }
 
   /// The pixels of an extent: none behind the eye, every one when

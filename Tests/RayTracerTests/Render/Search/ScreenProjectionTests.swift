@@ -1,0 +1,82 @@
+import XCTest
+
+@testable import RayTracer
+
+/// `ScreenProjection.cornerExtent`, the short way to the screen extent of
+/// a triangle's corner (a ball far smaller than its distance): every point
+/// of the ball projects inside it, it is as tight as `extent` up to the
+/// pads, and past its limit it is `extent`.
+final class ScreenProjectionTests: XCTestCase {
+  func projection(_ generator: inout SplitMix64) -> ScreenProjection? {
+    guard
+      let camera = PerspectiveCamera<Double>(
+        center: .zero, direction: generator.unitVector(Double.self),
+        up: generator.unitVector(Double.self),
+        angle: generator.uniform(5...150))
+    else { return nil }
+    return ScreenProjection(
+      camera: camera, width: 640, height: 480, style: .course)
+  }
+
+  func interval(_ extent: ScreenProjection.Extent) -> (
+    x: (lower: Double, upper: Double), y: (lower: Double, upper: Double)
+  )? {
+    guard case .within(let x, let y) = extent else { return nil }
+    return (x, y)
+  }
+
+  func testCornerExtentHoldsTheBall() {
+    forEachSeed(300, base: 0xC0_4E7) { generator, _ in
+      guard let projection = self.projection(&generator) else { return }
+      // A point in front of the eye, within 60° of the view, 10⁻³ to 10⁷
+      // away; a ball about it of 10⁻¹² to 2⁻²⁰ of its distance.
+      let forward = projection.r3 / projection.r3Length
+      let aside = generator.unitVector(Double.self)
+      let direction =
+        (forward + (aside - forward * aside.dot(forward))
+          * generator.uniform(0...1.7))
+        .normalized()
+      let p = direction * generator.logUniform(1e-3, 1e7)
+      let p3 = projection.r3.dot(p)
+      let ρ = p3 / projection.r3Length * generator.logUniform(1e-12, 0x1p-20)
+      guard let box = interval(projection.cornerExtent(p, reach: ρ)),
+        let exact = interval(projection.extent(center: p, reach: ρ))
+      else { return XCTFail("a ball in front without a bounded extent") }
+      for _ in 0..<64 {
+        let q = p + generator.unitVector(Double.self) * ρ
+        let x = projection.axes.x.row.dot(q) / projection.r3.dot(q)
+        let y = projection.axes.y.row.dot(q) / projection.r3.dot(q)
+        XCTAssertTrue(
+          box.x.lower <= x && x <= box.x.upper && box.y.lower <= y
+            && y <= box.y.upper,
+          "a point of the ball outside the corner's extent")
+      }
+      // Near the ellipse's box: the bound's |rᵢ| + |k| |r₃| against the
+      // ellipse's half-width, at most about 3 times it at 60° off the
+      // view's axis, plus the pads (2⁻³⁰ of the terms' scale).
+      let widths = (box.x.upper - box.x.lower, box.y.upper - box.y.lower)
+      let exactWidths = (
+        exact.x.upper - exact.x.lower, exact.y.upper - exact.y.lower
+      )
+      XCTAssertLessThan(widths.0, 4 * exactWidths.0 + 1e-6)
+      XCTAssertLessThan(widths.1, 4 * exactWidths.1 + 1e-6)
+    }
+  }
+
+  func testCornerExtentIsTheExtentPastItsLimit() throws {
+    var generator = SplitMix64(seed: 0xC0_4E8)
+    let projection = try XCTUnwrap(self.projection(&generator))
+    let p = projection.r3 / projection.r3Length * 10
+    let p3 = projection.r3.dot(p)
+    for ρ in [p3 / projection.r3Length * 0x1p-19, 3.0, 20.0] {
+      let corner = interval(projection.cornerExtent(p, reach: ρ))
+      let ball = interval(projection.extent(center: p, reach: ρ))
+      XCTAssertEqual(corner?.x.lower, ball?.x.lower)
+      XCTAssertEqual(corner?.y.upper, ball?.y.upper)
+    }
+    // Behind the eye, as `extent` says.
+    guard case .behind = projection.cornerExtent(-p, reach: 1e-9) else {
+      return XCTFail("a corner behind the eye")
+    }
+  }
+}
