@@ -18,6 +18,7 @@ struct Raytrace: ParsableCommand {
   /// The entry point: `main()` of the argument parser, with the command line
   /// read by `parseCommand(_:)`.
   static func main() {
+    Platform.keepFreedMemory()
     do {
       var command = try parseCommand(Array(CommandLine.arguments.dropFirst()))
       try command.run()

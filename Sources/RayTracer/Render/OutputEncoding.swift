@@ -104,13 +104,7 @@ enum OutputEncoding {
     private static func encodeRaw<S: RayScalar>(
       _ image: RawImage<S>, _ format: ImageFormat
     ) -> [UInt8] {
-      if format == .pfm {
-        return PFMEncoder.encode(
-          RawImage(
-            width: image.width, height: image.height,
-            channels: image.channels,
-            values: image.values.map { Float($0) }))
-      }
+      if format == .pfm { return PFMEncoder.encode(converting: image) }
       return NPYEncoder.encode(image)
     }
   }

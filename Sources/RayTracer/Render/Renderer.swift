@@ -50,10 +50,15 @@ public enum Renderer {
   /// `render`, and how it searched the spheres and triangles: a scene
   /// compiled for projection is projected onto screen tiles, or given its
   /// hierarchies when `ScreenTiles` declines it.
+  ///
+  /// - Parameter recycling: an earlier render's buffers of the same size
+  ///   and outputs, written over instead of allocating new ones (repeated
+  ///   renders, `RenderSettings.repeats`): memory already faulted in.
   static func renderReportingSearch<Kernel: IntersectionKernel>(
     _ scene: CompiledScene<Kernel>, settings: RenderSettings,
     overlapLimit: Int = ScreenTiles<Kernel>.overlapLimit,
-    progress: (@Sendable (Int) -> Void)? = nil
+    progress: (@Sendable (Int) -> Void)? = nil,
+    recycling: consuming RenderBuffers<Kernel.Scalar>? = nil
   ) -> (
     buffers: RenderBuffers<Kernel.Scalar>, search: SphereSearch,
     triangleSearch: TriangleSearch
@@ -72,7 +77,7 @@ public enum Renderer {
     }
     let buffers = render(
       scene, settings: settings, rays: Kernel.Scalar.self, tiles: tiles,
-      progress: progress)
+      progress: progress, recycling: consume recycling)
     let search: SphereSearch =
       tiles != nil
       ? .screenTiles
@@ -96,16 +101,19 @@ public enum Renderer {
     rays: RayPrecision.Type, progress: (@Sendable (Int) -> Void)? = nil
   ) -> RenderBuffers<Kernel.Scalar> {
     render(
-      scene, settings: settings, rays: rays, tiles: nil, progress: progress)
+      scene, settings: settings, rays: rays, tiles: nil, progress: progress,
+      recycling: nil)
   }
 
-  /// `tiles`, when given, must come from this scene, camera and settings.
+  /// `tiles`, when given, must come from this scene, camera and settings;
+  /// `recycling`'s arrays are reused where their sizes are the ones needed.
   private static func render<
     Kernel: IntersectionKernel, RayPrecision: RayScalar
   >(
     _ scene: CompiledScene<Kernel>, settings: RenderSettings,
     rays: RayPrecision.Type, tiles: ScreenTiles<Kernel>?,
-    progress: (@Sendable (Int) -> Void)?
+    progress: (@Sendable (Int) -> Void)?,
+    recycling: consuming RenderBuffers<Kernel.Scalar>?
   ) -> RenderBuffers<Kernel.Scalar> {
     typealias S = Kernel.Scalar
     let width = settings.width
@@ -123,46 +131,42 @@ public enum Renderer {
       return settings.quantizedOutputs.contains(output)
         ? (0, 3 * count) : (count, 0)
     }
-    var normals: [Vector3<S>] = []
-    var color: [RGB<S>] = []
-    var normalBytes: [UInt8] = []
-    var colorBytes: [UInt8] = []
-    let depth = uninitializedArray(
-      of: S.self, count: outputs.contains(.depth) ? count : 0
-    ) {
+    // The recycled arrays are taken out of their buffers, so that each is
+    // referenced once and written in place.
+    var old = (consume recycling) ?? RenderBuffers(width: 0, height: 0)
+    var normals = old.normals
+    var color = old.color
+    var normalBytes = old.normalBytes
+    var colorBytes = old.colorBytes
+    var depth = old.depth
+    old = RenderBuffers(width: 0, height: 0)
+    fill(&depth, count: outputs.contains(.depth) ? count : 0) {
       depth in
-      normals = uninitializedArray(
-        of: Vector3<S>.self, count: counts(.normals).values
-      ) { normals in
-        color = uninitializedArray(
-          of: RGB<S>.self, count: counts(.shaded).values
-        ) { color in
-         normalBytes = uninitializedArray(
-          of: UInt8.self, count: counts(.normals).bytes
-         ) { normalBytes in
-          colorBytes = uninitializedArray(
-            of: UInt8.self, count: counts(.shaded).bytes
-          ) { colorBytes in
-          let targets = Targets(
-            depth: depth, normals: normals, color: color,
-            normalBytes: normalBytes, colorBytes: colorBytes,
-            style: settings.style)
-          // Screen x per column, once per render rather than a division
-          // per pixel.
-          let columns = (0..<width).map { column -> RayPrecision in
-            settings.style.screenX(column: column, width: width)
-          }
-          columns.withUnsafeBufferPointer { buffer in
-            let columns = Shared(buffer)
-            forEachRowBatch(
-              rows: height, threads: settings.threads, progress: progress
-            ) { rows in
-              renderRows(
-                rows, columns.value, scene, camera, settings, tiles, targets)
+      fill(&normals, count: counts(.normals).values) { normals in
+        fill(&color, count: counts(.shaded).values) { color in
+          fill(&normalBytes, count: counts(.normals).bytes) { normalBytes in
+            fill(&colorBytes, count: counts(.shaded).bytes) { colorBytes in
+              let targets = Targets(
+                depth: depth, normals: normals, color: color,
+                normalBytes: normalBytes, colorBytes: colorBytes,
+                style: settings.style)
+              // Screen x per column, once per render rather than a division
+              // per pixel.
+              let columns = (0..<width).map { column -> RayPrecision in
+                settings.style.screenX(column: column, width: width)
+              }
+              columns.withUnsafeBufferPointer { buffer in
+                let columns = Shared(buffer)
+                forEachRowBatch(
+                  rows: height, threads: settings.threads, progress: progress
+                ) { rows in
+                  renderRows(
+                    rows, columns.value, scene, camera, settings, tiles, targets
+                  )
+                }
+              }
             }
           }
-          }
-         }
         }
       }
     }
@@ -172,6 +176,22 @@ public enum Renderer {
     buffers.normalBytes = normalBytes
     buffers.colorBytes = colorBytes
     return buffers
+  }
+
+  /// Makes `array` `count` elements that `initialize` must write, every
+  /// one: the array's own storage when it has that many (a recycled
+  /// buffer; the elements are plain values, written over), else a new,
+  /// uninitialised one.
+  static func fill<T>(
+    _ array: inout [T], count: Int,
+    _ initialize: (UnsafeMutableBufferPointer<T>) -> Void
+  ) {
+    guard array.count == count else {
+      array = []
+      array = uninitializedArray(of: T.self, count: count, initialize)
+      return
+    }
+    array.withUnsafeMutableBufferPointer { initialize($0) }
   }
 
   /// An array of `count` elements that `initialize` must write, every one.

@@ -32,3 +32,28 @@ extension Array {
     self = storage
   }
 }
+
+extension Platform {
+  /// Keeps the memory `free` returns for the process's next allocations
+  /// instead of handing it back to the kernel; the executable calls it
+  /// first thing.
+  ///
+  /// glibc trims a heap as soon as 128 KiB at its top is free, and a
+  /// tile's scratch buffers (`withUnsafeTemporaryAllocation`, a few
+  /// hundred KiB, on the heap) were given back after every tile and
+  /// faulted in again page by page for the next: 47,000 of the 53,000 page
+  /// faults of a 10³-triangle mesh's depth at 1920×1080, its first render
+  /// 137 ms instead of 38 (docs/PERFORMANCE.md, "Page faults"). This sets
+  /// glibc's trim threshold (`mallopt(M_TRIM_THRESHOLD)`, looked up at run
+  /// time: `<malloc.h>` is not part of the Glibc module) to its largest.
+  /// macOS's allocator keeps such regions by itself: nothing to do there.
+  public static func keepFreedMemory() {
+    #if canImport(Glibc)
+      typealias Mallopt = @convention(c) (Int32, Int32) -> Int32
+      guard let symbol = dlsym(nil, "mallopt") else { return }
+      let mallopt = unsafeBitCast(symbol, to: Mallopt.self)
+      let trimThreshold: Int32 = -1  // M_TRIM_THRESHOLD in <malloc.h>
+      _ = mallopt(trimThreshold, Int32.max)
+    #endif
+  }
+}

@@ -36,6 +36,23 @@ final class RawEncoderTests: XCTestCase {
       [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0x80, 0x3F])
   }
 
+  /// A Double image's values rounded to Float once each as written: the
+  /// bytes of the image converted first.
+  func testPFM_DoubleValuesRoundedOnce() {
+    let values: [Double] = [0.1, 1e300, -1e-50, .infinity, -2.5, 1 / 3]
+    let image = RawImage<Double>(
+      width: 1, height: 2, channels: 3, values: values)
+    XCTAssertEqual(
+      PFMEncoder.encode(converting: image),
+      PFMEncoder.encode(
+        RawImage<Float>(
+          width: 1, height: 2, channels: 3, values: values.map { Float($0) })))
+    // The top row comes last, and its last value, −10⁻⁵⁰, is −0 in Float.
+    XCTAssertEqual(
+      Array(PFMEncoder.encode(converting: image).suffix(4)),
+      [0x00, 0x00, 0x00, 0x80])
+  }
+
   func npyHeader(_ bytes: [UInt8]) -> (String, Int) {
     let length = Int(bytes[8]) | Int(bytes[9]) << 8
     return (
