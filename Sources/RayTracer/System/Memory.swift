@@ -43,9 +43,10 @@ extension Platform {
   /// hundred KiB, on the heap) were given back after every tile and
   /// faulted in again page by page for the next: 47,000 of the 53,000 page
   /// faults of a 10³-triangle mesh's depth at 1920×1080, its first render
-  /// 137 ms instead of 38 (docs/PERFORMANCE.md, "Page faults"). This sets
-  /// glibc's trim threshold (`mallopt(M_TRIM_THRESHOLD)`, looked up at run
-  /// time: `<malloc.h>` is not part of the Glibc module) to its largest.
+  /// 137 ms instead of 38 (docs/PERFORMANCE.md, "Edge planes, corner
+  /// projection and page faults"). This sets glibc's trim threshold
+  /// (`mallopt(M_TRIM_THRESHOLD)`, looked up at run time: `<malloc.h>` is
+  /// not part of the Glibc module) to its largest.
   /// macOS's allocator keeps such regions by itself: nothing to do there.
   public static func keepFreedMemory() {
     #if canImport(Glibc)
