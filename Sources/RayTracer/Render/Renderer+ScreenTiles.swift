@@ -260,6 +260,11 @@ extension Renderer {
           // ones in index order, as in the search without tiles, and take t
           // from their planes.
           let ordinary = scene.ordinaryTriangleCount
+          // Not in Float, whose edge-plane margins (256 ε of the corners'
+          // distances squared) are wider than most triangles a few pixels
+          // across (the 10⁵-triangle mesh 12 % slower with them, no Float
+          // render faster).
+          let edgePlanes = S.significandBitCount > Float.significandBitCount
           scene.triangles.withUnsafeBufferPointer { records in
             for entry in triangleEntries {
               let index = Int(entry.triangle)
@@ -267,13 +272,9 @@ extension Renderer {
               let plane =
                 index < ordinary ? nil : scene.trianglePlanes[index - ordinary]
               // An ordinary triangle over more than a few pixels first
-              // looks at each ray through its edges' planes; not in Float,
-              // whose margins (256 ε of the corners' distances squared)
-              // are wider than most such triangles (the 10⁵-triangle mesh
-              // 12 % slower with them, none faster).
+              // looks at each ray through its edges' planes.
               let sides =
-                S.significandBitCount > Float.significandBitCount
-                  && plane == nil
+                edgePlanes && plane == nil
                   && (Int(entry.lastColumn) - Int(entry.firstColumn)
                     + Int(entry.lastRow) - Int(entry.firstRow)) >= 2
                 ? TriangleEdgePlanes(

@@ -188,22 +188,15 @@ public enum Renderer {
   ) {
     guard array.count == count else {
       array = []
-      array = uninitializedArray(of: T.self, count: count, initialize)
+      array = Array(unsafeUninitializedCapacity: count) {
+        buffer, initializedCount in
+        Memory.adviseHugePages(UnsafeMutableRawBufferPointer(buffer))
+        initialize(buffer)
+        initializedCount = count
+      }
       return
     }
     array.withUnsafeMutableBufferPointer { initialize($0) }
-  }
-
-  /// An array of `count` elements that `initialize` must write, every one.
-  static func uninitializedArray<T>(
-    of _: T.Type, count: Int,
-    _ initialize: (UnsafeMutableBufferPointer<T>) -> Void
-  ) -> [T] {
-    Array(unsafeUninitializedCapacity: count) { buffer, initializedCount in
-      Memory.adviseHugePages(UnsafeMutableRawBufferPointer(buffer))
-      initialize(buffer)
-      initializedCount = count
-    }
   }
 
   /// Disjoint rows of these buffers are written by different threads.

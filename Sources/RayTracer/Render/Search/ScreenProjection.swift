@@ -177,9 +177,9 @@ struct ScreenProjection: Sendable {
   @inline(__always)
   func cornerExtent(_ p: Vector3<Double>, reach ρ: Double) -> Extent {
     let p3 = r3.dot(p)
-    let extent = p.x.magnitude + p.y.magnitude + p.z.magnitude + ρ
-    guard p3 >= 0x1p20 * ρ * r3Length, extent.isFinite, ρ.isFinite else {
-      return self.extent(center: p, reach: ρ)
+    let far = p.x.magnitude + p.y.magnitude + p.z.magnitude + ρ
+    guard p3 >= 0x1p20 * ρ * r3Length, far.isFinite, ρ.isFinite else {
+      return extent(center: p, reach: ρ)
     }
     let inverseP3 = 1 / p3
     func interval(_ axis: Axis) -> (lower: Double, upper: Double)? {
@@ -188,14 +188,14 @@ struct ScreenProjection: Sendable {
       let reach =
         ρ * (axis.length + k.magnitude * r3Length) * inverseP3
         * (1 + 0x1p-19)
-      let scale = (pi.magnitude + extent * (axis.length + r3Length)) * inverseP3
+      let scale = (pi.magnitude + far * (axis.length + r3Length)) * inverseP3
       let pad = 0x1p-30 * condition * (1 + scale + scale * scale)
       let (lower, upper) = (k - reach - pad, k + reach + pad)
       guard lower.isFinite, upper.isFinite else { return nil }
       return (lower, upper)
     }
     guard let x = interval(axes.x), let y = interval(axes.y) else {
-      return self.extent(center: p, reach: ρ)
+      return extent(center: p, reach: ρ)
     }
     return .within(x: x, y: y)
   }
