@@ -86,11 +86,41 @@ public struct Material<Scalar: RayScalar>: Hashable, Sendable {
         let reflected = normal * (2 * cosine) - toLight
         let highlight = -viewDirection.dot(reflected)
         if highlight > 0 {
-          intensity += specular * Scalar.pow(highlight, shininess)
+          intensity += specularTerm(highlight)
         }
         color += intensity * lightColor
       }
       return color
+    }
+
+    /// specular·highlight^shininess, the same bits as computing it in full
+    /// (for Double and Float; the power is the C library's `pow`), with
+    /// the power left out where its value is known or cannot show:
+    /// - shininess 1: x¹ = x is a double, which the C library's `pow`
+    ///   returns (glibc's error is below 0.52 ulp, and a result within that
+    ///   of a double is the double; `MaterialTests` checks 10⁶ values);
+    /// - shininess 0: x⁰ = 1 for every x (C, Annex F);
+    /// - a black specular colour (every channel ±0) with 0 ≤ shininess ≤
+    ///   1024 and highlight ≤ 1 + 1/16 (from unit vectors it is at most
+    ///   1 + 4ε): the power is finite and not negative, below
+    ///   (17/16)¹⁰²⁴ < 2⁹⁰, within Float's range, so ±0 times it is that
+    ///   same ±0: the product is the specular colour itself.
+    /// Most of the course's materials have no specular colour, and its
+    /// shininess-1 materials spent a sixth of a supersampled render in
+    /// `pow` (docs/PERFORMANCE.md, "Shading").
+    ///
+    /// In double-double (tests only) `pow` goes through Double, so there
+    /// shininess 1 is more accurate than `pow` was.
+    @inlinable @inline(__always)
+    func specularTerm(_ highlight: Scalar) -> RGB<Scalar> {
+      if shininess == 1 { return specular * highlight }
+      if shininess == 0 { return specular }
+      if specular == .zero && highlight <= 1.0625 && shininess >= 0
+        && shininess <= 1024
+      {
+        return specular
+      }
+      return specular * Scalar.pow(highlight, shininess)
     }
   }
 }
