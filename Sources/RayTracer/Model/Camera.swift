@@ -92,6 +92,14 @@ public struct PerspectiveCamera<Scalar: RayScalar>: Hashable, Sendable {
   public func rayDirection(x: Scalar, rowBase: Vector3<Scalar>) -> Vector3<
     Scalar
   > {
-    (horizontal * x + rowBase).normalizedByReciprocal()
+    throughScreen(x: x, rowBase: rowBase).normalizedByReciprocal()
+  }
+
+  /// `rayDirection(x:rowBase:)` before it is normalised: x·u + rowBase.
+  @inlinable
+  public func throughScreen(x: Scalar, rowBase: Vector3<Scalar>) -> Vector3<
+    Scalar
+  > {
+    horizontal * x + rowBase
   }
 }

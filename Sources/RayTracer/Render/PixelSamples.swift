@@ -54,6 +54,13 @@ struct PixelSamples<R: RayScalar>: IteratorProtocol {
 
   @inline(__always)
   mutating func next() -> Vector3<R>? {
+    nextThroughScreen()?.normalizedByReciprocal()
+  }
+
+  /// The next sample's direction before it is normalised: `next()` is it
+  /// normalised by reciprocal (`PerspectiveCamera.throughScreen`).
+  @inline(__always)
+  mutating func nextThroughScreen() -> Vector3<R>? {
     guard stratum < count else { return nil }
     let (stratumY, stratumX) = stratum.quotientAndRemainder(dividingBy: strata)
     stratum += 1
@@ -65,6 +72,7 @@ struct PixelSamples<R: RayScalar>: IteratorProtocol {
       / Double(strata)
     let x = centre.x + R(filter.offset(u)) * step.x
     let y = centre.y - R(filter.offset(v)) * step.y
-    return camera.rayDirection(x: x, y: y, aspect: aspect)
+    return camera.throughScreen(
+      x: x, rowBase: camera.rowBase(y: y, aspect: aspect))
   }
 }
