@@ -161,7 +161,9 @@ public enum RenderJob {
       // too, their tiles and boxes widened by the filter's reach.
       hierarchyThreshold: settings.hierarchyThreshold ?? .max,
       projectionThreshold: settings.projectionThreshold
-        ?? CompiledScene<Kernel>.projectionThreshold,
+        ?? (settings.samples > 1
+          ? CompiledScene<Kernel>.supersampledProjectionThreshold
+          : CompiledScene<Kernel>.projectionThreshold),
       triangleProjectionThreshold: settings.triangleProjectionThreshold
         ?? CompiledScene<Kernel>.triangleProjectionThreshold)
     let compileSeconds = clock.lap()
