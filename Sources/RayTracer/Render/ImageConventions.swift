@@ -129,7 +129,7 @@ extension ImageStyle {
 
   /// A normal's pixel: |n| per component (course) or (n + 1)/2 (mit),
   /// quantized.
-  @inlinable
+  @inlinable @inline(__always)
   public func pixel<S: RayScalar>(normal: Vector3<S>) -> (UInt8, UInt8, UInt8) {
     switch self {
     case .course:
@@ -141,7 +141,7 @@ extension ImageStyle {
   }
 
   /// A colour's pixel: each component quantized.
-  @inlinable
+  @inlinable @inline(__always)
   public func pixel<S: RayScalar>(_ value: Vector3<S>) -> (UInt8, UInt8, UInt8)
   {
     (quantize(value.x), quantize(value.y), quantize(value.z))
@@ -149,7 +149,7 @@ extension ImageStyle {
 
   /// [0, 1] to 0...255: truncation in the course style (its `UInt8(v·255)`),
   /// rounding in the mit style; values outside are clamped, NaN is 0.
-  @inlinable
+  @inlinable @inline(__always)
   public func quantize<S: RayScalar>(_ value: S) -> UInt8 {
     guard value > 0 else { return 0 }
     guard value < 1 else { return 255 }

@@ -218,6 +218,47 @@ extension Renderer {
     }
   }
 
+  /// One entry's triangle tested against the rays of its box's pixels:
+  /// each ray first through the triangle's edge planes (`sides`, when
+  /// given), then by the watertight test or, for a large triangle, its
+  /// plane. A function of its own, not inlined into `finishSearches`: the
+  /// 10³-triangle mesh 3–5 % faster on one thread so.
+  @inline(never)
+  static func testTriangle<Kernel: IntersectionKernel>(
+    _ entry: ScreenTiles<Kernel>.TriangleEntry, _ index: Int,
+    _ records: UnsafeBufferPointer<TriangleRecord<Kernel.Scalar>>,
+    plane: LargeTrianglePlane<Kernel.Scalar>?,
+    sides: TriangleEdgePlanes<Kernel.Scalar>?,
+    rays: UnsafeMutableBufferPointer<CameraRay<Kernel.Scalar>>,
+    prepared: UnsafeMutableBufferPointer<WatertightRay<Kernel.Scalar>>,
+    searches: UnsafeMutableBufferPointer<
+      NearestHit<Kernel.Scalar, CompiledScene<Kernel>.Nearest>
+    >,
+    weights: UnsafeMutableBufferPointer<TriangleWeights<Kernel.Scalar>>
+  ) {
+    let tileWidth = ScreenTiles<Kernel>.tileWidth
+    let record = records[index]
+    for row in Int(entry.firstRow)...Int(entry.lastRow) {
+      for column in Int(entry.firstColumn)...Int(entry.lastColumn) {
+        let slot = row * tileWidth + column
+        if let sides, sides.excludes(rays[slot].direction) {
+          continue
+        }
+        searches[slot].test(.triangle(index)) {
+          if let plane {
+            return TriangleRecord.t(
+              prepared[slot], records.baseAddress! + index,
+              plane: plane, before: $0)
+          }
+          guard let hit = record.intersect(prepared[slot], before: $0)
+          else { return nil }
+          weights[slot] = TriangleWeights(u: hit.u, v: hit.v, w: hit.w)
+          return hit.t
+        }
+      }
+    }
+  }
+
   /// Each pixel's search of a tile finished after its spheres
   /// (`testEntries`): planes, then the projected triangles of
   /// `triangleEntries`, the large ones included (each tested against the
@@ -314,26 +355,9 @@ extension Renderer {
                 ? TriangleEdgePlanes(
                   record.v0, record.v1, record.v2, origin: scene.rayOrigin)
                 : nil
-              for row in Int(entry.firstRow)...Int(entry.lastRow) {
-                for column in Int(entry.firstColumn)...Int(entry.lastColumn) {
-                  let slot = row * tileWidth + column
-                  if let sides, sides.excludes(rays[slot].direction) {
-                    continue
-                  }
-                  searches[slot].test(.triangle(index)) {
-                    if let plane {
-                      return TriangleRecord.t(
-                        prepared[slot], records.baseAddress! + index,
-                        plane: plane, before: $0)
-                    }
-                    guard let hit = record.intersect(prepared[slot], before: $0)
-                    else { return nil }
-                    weights[slot] = TriangleWeights(
-                      u: hit.u, v: hit.v, w: hit.w)
-                    return hit.t
-                  }
-                }
-              }
+              testTriangle(
+                entry, index, records, plane: plane, sides: sides, rays: rays,
+                prepared: prepared, searches: searches, weights: weights)
             }
           }
           for row in 0..<rows {
