@@ -29,6 +29,10 @@ extension PNGEncoder {
     /// a few hundred rows gives both threads several pieces.
     public static let targetPieceBytes = 256 * 1024
 
+    /// About this many filtered bytes go to zlib at a time (whole rows, at
+    /// least one).
+    static let batchBytes = 32 * 1024
+
     public init(
       _ rows: PixelRows, options: PNGOptions,
       rowsPerPiece: Int? = nil
@@ -62,31 +66,47 @@ extension PNGEncoder {
       let isLast = index == count - 1
       let deflater = Deflater(level: options.compressionLevel)
       var adler = CZlib.adler32(0, nil, 0)
+      // Filtered rows go to zlib (and the checksum) in batches of about
+      // `batchBytes`: the course scene's three PNGs 2–3 % faster to write
+      // than a call per row.
+      let batchRows = Swift.max(1, Self.batchBytes / (stride + 1))
       // Two raw rows (current and previous, swapped each row), the
-      // filtered row with its type byte, the adaptive filter's scratch.
-      var buffers = [UInt8](repeating: 0, count: 4 * stride + 1)
+      // adaptive filter's scratch, a batch of filtered rows with their
+      // type bytes.
+      var buffers = [UInt8](
+        repeating: 0, count: 3 * stride + batchRows * (stride + 1))
       buffers.withUnsafeMutableBufferPointer { buffers in
         var current = UnsafeMutableBufferPointer(rebasing: buffers[0..<stride])
         var previous = UnsafeMutableBufferPointer(
           rebasing: buffers[stride..<(2 * stride)])
-        let filtered = UnsafeMutableBufferPointer(
-          rebasing: buffers[(2 * stride)..<(3 * stride + 1)])
         let scratch = UnsafeMutableBufferPointer(
-          rebasing: buffers[(3 * stride + 1)...])
+          rebasing: buffers[(2 * stride)..<(3 * stride)])
+        let batch = UnsafeMutableBufferPointer(
+          rebasing: buffers[(3 * stride)...])
+        var batched = 0
         if first > 0 && first < end {
           rows.fill(row: first - 1, into: previous)
         }
         for row in first..<end {
           rows.fill(row: row, into: current)
+          let start = batched * (stride + 1)
           filterRow(
             UnsafeBufferPointer(current),
             row > 0 ? UnsafeBufferPointer(previous) : nil, options.filter,
-            into: filtered, scratch: scratch)
-          adler = CZlib.adler32(
-            adler, filtered.baseAddress, uInt(filtered.count))
-          deflater.add(
-            UnsafeBufferPointer(filtered),
-            ending: row == end - 1 ? (isLast ? .last : .piece) : nil)
+            into: UnsafeMutableBufferPointer(
+              rebasing: batch[start..<(start + stride + 1)]),
+            scratch: scratch)
+          batched += 1
+          if batched == batchRows || row == end - 1 {
+            let filtered = UnsafeBufferPointer(
+              rebasing: batch[0..<(batched * (stride + 1))])
+            adler = CZlib.adler32(
+              adler, filtered.baseAddress, uInt(filtered.count))
+            deflater.add(
+              filtered,
+              ending: row == end - 1 ? (isLast ? .last : .piece) : nil)
+            batched = 0
+          }
           swap(&current, &previous)
         }
         if first >= end {

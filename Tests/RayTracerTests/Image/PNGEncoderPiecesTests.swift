@@ -20,9 +20,20 @@ final class PNGEncoderPiecesTests: XCTestCase {
   }
 
   func testEveryCutOfTheRowsDecodesToTheImage() throws {
-    let image = PNGEncoderTests.makeImage(width: 17, height: 11)
+    try checkEveryCut(width: 17, levels: [-1, 0, 1, 6, 9])
+  }
+
+  /// Rows of 12,001 filtered bytes: a batch for zlib (`batchBytes`) holds
+  /// two, so pieces of 3, 5 and 11 rows end on part of a batch.
+  func testPiecesOfSeveralBatchesDecodeToTheImage() throws {
+    XCTAssertEqual(PNGEncoder.Pieces.batchBytes / 12_001, 2)
+    try checkEveryCut(width: 4_000, levels: [1])
+  }
+
+  func checkEveryCut(width: Int, levels: [Int32]) throws {
+    let image = PNGEncoderTests.makeImage(width: width, height: 11)
     for filter in PNGFilter.allCases {
-      for level: Int32 in [-1, 0, 1, 6, 9] {
+      for level in levels {
         for rowsPerPiece in [1, 2, 3, 5, 10, 11, 100] {
           let pieces = PNGEncoder.Pieces(
             PixelRows(image),
