@@ -196,6 +196,19 @@ extension Renderer {
         withUnsafeTemporaryAllocation(
           of: TriangleWeights<S>.self, capacity: capacity
         ) { weights in
+          // The rays are prepared for the watertight test only inside the
+          // union of the triangles' boxes: no other slot is tested (the
+          // three divisions of a tile without triangles are saved).
+          var covered = (
+            rows: Int.max, lastRow: Int.min, columns: Int.max,
+            lastColumn: Int.min
+          )
+          for entry in triangleEntries {
+            covered.rows = min(covered.rows, Int(entry.firstRow))
+            covered.lastRow = max(covered.lastRow, Int(entry.lastRow))
+            covered.columns = min(covered.columns, Int(entry.firstColumn))
+            covered.lastColumn = max(covered.lastColumn, Int(entry.lastColumn))
+          }
           for row in 0..<rows {
             for column in 0..<columns {
               let slot = row * tileWidth + column
@@ -204,9 +217,17 @@ extension Renderer {
                 nearestT[slot], sphere(slot).map { .sphere(Int($0.sphere)) })
               scene.testPlanes(ray, &search)
               (searches.baseAddress! + slot).initialize(to: search)
-              (prepared.baseAddress! + slot).initialize(
-                to: WatertightRay(
-                  Ray(origin: ray.origin, direction: ray.direction)))
+            }
+          }
+          if covered.rows <= covered.lastRow {
+            for row in covered.rows...covered.lastRow {
+              for column in covered.columns...covered.lastColumn {
+                let slot = row * tileWidth + column
+                let ray = rays[slot]
+                (prepared.baseAddress! + slot).initialize(
+                  to: WatertightRay(
+                    Ray(origin: ray.origin, direction: ray.direction)))
+              }
             }
           }
           // The large triangles (`TrianglePlane`) come after the ordinary
