@@ -94,14 +94,16 @@ extension Renderer {
                           to: FoundHit(
                             hit: hit, record: entry?.record, weights: weights))
                       }
-                      // Shaded after every search of the tile, in a loop of its
-                      // own: arch at 16 samples 20 % faster than shading each
-                      // sample inside the search loop, the 10³-triangle mesh
-                      // 15 % (docs/PERFORMANCE.md, "Shading").
-                      // The normals, then the colours: each loop's square roots and
-                      // divisions overlap from one sample to the next (the course scene
-                      // 4–7 % faster, 10⁴ spheres 5 %). A scene with layers goes through
-                      // `sampleColor`, which looks for a nearer hit in them first.
+                      // Shaded after every search of the tile, in loops of
+                      // their own: arch at 16 samples 20 % faster than
+                      // shading each sample inside the search loop, the
+                      // 10³-triangle mesh 15 %; and the normals before the
+                      // colours, each loop's square roots and divisions
+                      // overlapping from one sample to the next (the course
+                      // scene 4–7 %, 10⁴ spheres 5 %; docs/PERFORMANCE.md,
+                      // "Shading"). A scene with layers goes through
+                      // `sampleColor`, which looks for a nearer hit in them
+                      // first.
                       if scene.layers.isEmpty {
                         for row in rows {
                           for column in tileColumns {
@@ -132,8 +134,6 @@ extension Renderer {
                           for column in tileColumns {
                             let slot = slot(row, column)
                             let found = hits[slot]
-                            // A sphere found here is the entry's: only other kinds
-                            // are searched after it.
                             sums[slot] += sampleColor(
                               found.hit, ray: rays[slot], scene: scene,
                               sphereRecord: found.record,
@@ -162,8 +162,9 @@ extension Renderer {
 }
 
 /// What a sample's search found, kept until the tile's samples are shaded
-/// together: the nearest hit, the record of the sphere entry found (if any)
-/// and an ordinary triangle's weights.
+/// together: the nearest hit, the record of the sphere entry found (if any;
+/// a sphere found is the entry's, since only other kinds are searched
+/// after the entries) and an ordinary triangle's weights.
 struct FoundHit<Kernel: IntersectionKernel> {
   var hit: (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest)?
   var record: Kernel.SphereRecord?
