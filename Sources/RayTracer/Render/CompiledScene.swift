@@ -241,9 +241,14 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
 
   /// The sphere count from which single-sample renders project spheres
   /// onto screen tiles (`ScreenTiles`) rather than cull them per tile or
-  /// build a hierarchy: where projection and culling tie (measurements in
-  /// docs/PERFORMANCE.md, "Thresholds").
-  public static var projectionThreshold: Int { 300 }
+  /// build a hierarchy: every sphere scene in Double (on two threads,
+  /// scenes of 1 to 200 spheres 10–18 % faster, the course scene 2–10 %),
+  /// from 300 in Float, whose wider margins give each sphere a larger box
+  /// (projection there 8–25 % slower below 300; docs/PERFORMANCE.md,
+  /// "Thresholds").
+  public static var projectionThreshold: Int {
+    Scalar.significandBitCount > Float.significandBitCount ? 1 : 300
+  }
 
   /// The same for supersampled renders: every scene with a sphere. Their
   /// tiles search and shade a tile's k-th samples together, and the course
