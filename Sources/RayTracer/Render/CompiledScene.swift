@@ -243,8 +243,8 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// onto screen tiles (`ScreenTiles`) rather than cull them per tile or
   /// build a hierarchy: every sphere scene in Double (on two threads,
   /// scenes of 1 to 200 spheres 10–18 % faster, the course scene 2–10 %),
-  /// from 300 in Float, whose wider margins give each sphere a larger box
-  /// (projection there 8–25 % slower below 300; docs/PERFORMANCE.md,
+  /// from 300 in Float, where projection measured 8–25 % slower below
+  /// 300, for reasons not yet pinned down (docs/PERFORMANCE.md,
   /// "Thresholds").
   public static var projectionThreshold: Int {
     Scalar.significandBitCount > Float.significandBitCount ? 1 : 300
