@@ -98,7 +98,8 @@ public struct Material<Scalar: RayScalar>: Hashable, Sendable {
     /// the power left out where its value is known or cannot show:
     /// - shininess 1: x¹ = x is a double, which the C library's `pow`
     ///   returns (glibc's error is below 0.52 ulp, and a result within that
-    ///   of a double is the double; `MaterialTests` checks 10⁶ values);
+    ///   of a double is the double; `MaterialSpecularTests` checks 10⁶
+    ///   values);
     /// - shininess 0: x⁰ = 1 for every x (C, Annex F);
     /// - a black specular colour (every channel ±0) with 0 ≤ shininess ≤
     ///   1024 and highlight ≤ 1 + 1/16 (from unit vectors it is at most

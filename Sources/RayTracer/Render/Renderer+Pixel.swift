@@ -145,19 +145,9 @@ extension Renderer {
     withUnsafeTemporaryAllocation(of: Vector3<S>.self, capacity: samples.count)
     { directions in
       var count = 0
-      // The screen points, then their unit directions in a loop of their
-      // own (as `renderProjectedSamples` does).
-      withUnsafeTemporaryAllocation(
-        of: Vector3<R>.self, capacity: samples.count
-      ) { points in
-        while let point = samples.nextThroughScreen() {
-          (points.baseAddress! + count).initialize(to: point)
-          count += 1
-        }
-        for index in 0..<count {
-          (directions.baseAddress! + index).initialize(
-            to: Vector3<S>(points[index].normalizedByReciprocal()))
-        }
+      while let sample = samples.next() {
+        (directions.baseAddress! + count).initialize(to: Vector3<S>(sample))
+        count += 1
       }
       for direction in directions[0..<count] {
         let ray = CameraRay(origin: scene.rayOrigin, direction: direction)
