@@ -63,6 +63,86 @@ final class ScreenProjectionTests: XCTestCase {
     }
   }
 
+  /// `triangleExtent`, one reach and pad for three corners: it holds each
+  /// corner's `cornerExtent` exactly (the boxes stay conservative) and is
+  /// wider than their union by at most 16 times the widest corner's reach
+  /// and pad on each side (8 of its widths); it declines where a corner is
+  /// not far in front or the corners' depths differ by more than 2×.
+  func testTriangleExtentHoldsItsCorners() {
+    forEachSeed(300, base: 0x7A1_E47) { generator, _ in
+      guard let projection = self.projection(&generator) else { return }
+      let forward = projection.r3 / projection.r3Length
+      func corner(_ generator: inout SplitMix64) -> Vector3<Double> {
+        let aside = generator.unitVector(Double.self)
+        return
+          (forward + (aside - forward * aside.dot(forward))
+            * generator.uniform(0...1.7))
+          .normalized()
+          * generator.logUniform(1e-3, 1e7)
+      }
+      // Corners anywhere in view, or a small triangle about one of them.
+      let a = corner(&generator)
+      let spread = generator.logUniform(1e-9, 1) * a.length
+      let (b, c) =
+        generator.uniform(0...1) < 0.5
+        ? (corner(&generator), corner(&generator))
+        : (
+          a + generator.unitVector(Double.self) * spread,
+          a + generator.unitVector(Double.self) * spread
+        )
+      let nearest = Swift.min(
+        projection.r3.dot(a), projection.r3.dot(b), projection.r3.dot(c))
+      let ρ =
+        Swift.max(nearest, 0) / projection.r3Length
+        * generator.logUniform(1e-12, 0x1p-19)
+      guard let (x, y) = projection.triangleExtent(a, b, c, reach: ρ) else {
+        // Declined only where some corner is not far in front or the
+        // depths differ by more than twice.
+        let farthest = Swift.max(
+          projection.r3.dot(a), projection.r3.dot(b), projection.r3.dot(c))
+        XCTAssertTrue(
+          nearest < 0x1p20 * ρ * projection.r3Length
+            || farthest > 2 * nearest)
+        return
+      }
+      var widest = (x: 0.0, y: 0.0)
+      var union = (
+        x: (lower: Double.infinity, upper: -Double.infinity),
+        y: (lower: Double.infinity, upper: -Double.infinity)
+      )
+      for p in [a, b, c] {
+        guard let box = interval(projection.cornerExtent(p, reach: ρ)) else {
+          return XCTFail("a corner far in front without a bounded extent")
+        }
+        XCTAssertTrue(
+          x.lower <= box.x.lower && box.x.upper <= x.upper
+            && y.lower <= box.y.lower && box.y.upper <= y.upper,
+          "a corner's extent outside the triangle's")
+        union.x = (
+          min(union.x.lower, box.x.lower), max(union.x.upper, box.x.upper)
+        )
+        union.y = (
+          min(union.y.lower, box.y.lower), max(union.y.upper, box.y.upper)
+        )
+        widest = (
+          max(widest.x, box.x.upper - box.x.lower),
+          max(widest.y, box.y.upper - box.y.lower)
+        )
+      }
+      XCTAssertLessThanOrEqual(
+        x.upper - x.lower, (union.x.upper - union.x.lower) + 16 * widest.x)
+      XCTAssertLessThanOrEqual(
+        y.upper - y.lower, (union.y.upper - union.y.lower) + 16 * widest.y)
+    }
+    // A corner behind the eye, or at its plane: the way by corners.
+    var generator = SplitMix64(seed: 0x7A1_E48)
+    guard let projection = self.projection(&generator) else { return }
+    let p = projection.r3 / projection.r3Length * 10
+    XCTAssertNil(projection.triangleExtent(p, p * 1.01, -p, reach: 1e-9))
+    XCTAssertNil(
+      projection.triangleExtent(p, p * 1.01, .zero, reach: 1e-9))
+  }
+
   func testCornerExtentIsTheExtentPastItsLimit() throws {
     var generator = SplitMix64(seed: 0xC0_4E8)
     let projection = try XCTUnwrap(self.projection(&generator))
