@@ -289,23 +289,14 @@ struct ScreenProjection: Sendable {
     let padColumns =
       4 * Double(Float.ulpOfOne) * Double(width) + 0x1p-30 + margin
     let padRows = 4 * Double(Float.ulpOfOne) * Double(height) + 0x1p-30 + margin
-    // Clamped to [−1, limit] first, then rounded by truncation (a call
-    // to the C library's ceil or floor apiece without SSE 4.1): the same
-    // integers, the bounds being integers.
-    func clamped(_ value: Double, _ limit: Int) -> Double {
-      Swift.min(Swift.max(value, -1), Double(limit))
+    func clamped(_ value: Double, _ limit: Int) -> Int32 {
+      Int32(Swift.min(Swift.max(value, -1), Double(limit)))
     }
-    @inline(__always)
     func up(_ value: Double, _ limit: Int) -> Int32 {
-      let value = clamped(value, limit)
-      let truncated = Int32(value)
-      return Double(truncated) < value ? truncated + 1 : truncated
+      clamped(value.rounded(.up), limit)
     }
-    @inline(__always)
     func down(_ value: Double, _ limit: Int) -> Int32 {
-      let value = clamped(value, limit)
-      let truncated = Int32(value)
-      return Double(truncated) > value ? truncated - 1 : truncated
+      clamped(value.rounded(.down), limit)
     }
     let box = PixelBox(
       firstColumn: Swift.max(0, up(columns.0 - padColumns, width)),
