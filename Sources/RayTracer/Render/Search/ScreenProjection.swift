@@ -215,7 +215,8 @@ struct ScreenProjection: Sendable {
   /// in depth (P₃), as a mesh's small triangles are: then the largest 1/P₃
   /// is at most twice a corner's own, the shared reach and pad at most 16
   /// times the largest corner's (the pad grows with the square of its
-  /// scale), and all of it a few billionths of a pixel for such triangles.
+  /// scale), and all of it a few billionths of the image for such
+  /// triangles.
   /// Nil, for the way by corners, otherwise: where a corner is not far in
   /// front, the corners' depths differ more, or anything is not finite.
   @inline(__always)
