@@ -141,6 +141,18 @@ final class ScreenProjectionTests: XCTestCase {
     XCTAssertNil(projection.triangleExtent(p, p * 1.01, -p, reach: 1e-9))
     XCTAssertNil(
       projection.triangleExtent(p, p * 1.01, .zero, reach: 1e-9))
+    // Anything not finite, in any corner: the way by corners, which gives
+    // every pixel. (Min and max alone would pass over a NaN.)
+    for bad in [Double.nan, .infinity, -.infinity] {
+      for corner in 0..<3 {
+        var corners = [p, p * 1.01, p * 1.02]
+        corners[corner].y = bad
+        XCTAssertNil(
+          projection.triangleExtent(
+            corners[0], corners[1], corners[2], reach: 1e-9),
+          "corner \(corner) with y = \(bad)")
+      }
+    }
   }
 
   func testCornerExtentIsTheExtentPastItsLimit() throws {
