@@ -189,11 +189,9 @@ struct ScreenProjection: Sendable {
     func interval(_ axis: Axis) -> (lower: Double, upper: Double)? {
       let pi = axis.row.dot(p)
       let k = pi * inverseP3
-      let reach =
-        ρ * (axis.length + k.magnitude * r3Length) * inverseP3
-        * (1 + 0x1p-19)
-      let scale = (pi.magnitude + far * (axis.length + r3Length)) * inverseP3
-      let pad = 0x1p-30 * condition * (1 + scale + scale * scale)
+      let (reach, pad) = cornerSlack(
+        axis, k: k.magnitude, pi: pi.magnitude, inverseP3: inverseP3,
+        far: far, reach: ρ)
       let (lower, upper) = (k - reach - pad, k + reach + pad)
       guard lower.isFinite, upper.isFinite else { return nil }
       return (lower, upper)
@@ -204,21 +202,37 @@ struct ScreenProjection: Sendable {
     return .within(x: x, y: y)
   }
 
+  /// `cornerExtent`'s bound on one axis: how far the ball's points
+  /// project from the centre's screen point (reach), and the pad for this
+  /// arithmetic's rounding, from |k|, |Pᵢ|, 1/P₃ and far = ‖p‖₁ + ρ. Every
+  /// operation is monotone in each of those, rounding included, which
+  /// `triangleExtent` relies on when it passes the largest of three
+  /// corners'.
+  @inline(__always)
+  private func cornerSlack(
+    _ axis: Axis, k: Double, pi: Double, inverseP3: Double, far: Double,
+    reach ρ: Double
+  ) -> (reach: Double, pad: Double) {
+    let reach =
+      ρ * (axis.length + k * r3Length) * inverseP3 * (1 + 0x1p-19)
+    let scale = (pi + far * (axis.length + r3Length)) * inverseP3
+    return (reach, 0x1p-30 * condition * (1 + scale + scale * scale))
+  }
+
   /// `pixelBox(triangle:…)`'s usual case, every corner far enough in
   /// front for `cornerExtent`'s short way: the corners' screen points k and
-  /// one reach and one pad per axis for all three, from the largest |Pᵢ|,
-  /// |k|, 1/P₃ and ‖p‖₁ + ρ of the corners put into `cornerExtent`'s
-  /// formulas (four divisions fewer, and a mesh of 10⁶ triangles has
-  /// three million corners). Every operation there is monotone in those
-  /// terms, rounding included, so each interval holds the union of the
-  /// three corners' own. Only for corners within a factor 2 of each other
-  /// in depth (P₃), as a mesh's small triangles are: then the largest 1/P₃
-  /// is at most twice a corner's own, the shared reach and pad at most 16
+  /// one reach and one pad per axis for all three, `cornerSlack` of the
+  /// largest |k|, |Pᵢ|, 1/P₃ and ‖p‖₁ + ρ of the corners (four divisions
+  /// fewer, and a mesh of 10⁶ triangles has three million corners). That
+  /// is monotone in each, so each interval holds the union of the three
+  /// corners' own. Only for corners within a factor 2 of each other in
+  /// depth (P₃), as a mesh's small triangles are: then the largest 1/P₃ is
+  /// at most twice a corner's own, the shared reach and pad at most 16
   /// times the largest corner's (the pad grows with the square of its
   /// scale), and all of it a few billionths of the image for such
-  /// triangles.
-  /// Nil, for the way by corners, otherwise: where a corner is not far in
-  /// front, the corners' depths differ more, or anything is not finite.
+  /// triangles. Nil, for the way by corners, otherwise: where a corner is
+  /// not far in front, the corners' depths differ more, or anything is not
+  /// finite.
   @inline(__always)
   func triangleExtent(
     _ a: Vector3<Double>, _ b: Vector3<Double>, _ c: Vector3<Double>,
@@ -242,15 +256,10 @@ struct ScreenProjection: Sendable {
       let pi = (axis.row.dot(a), axis.row.dot(b), axis.row.dot(c))
       guard (pi.0 + pi.1 + pi.2).isFinite else { return nil }
       let k = (pi.0 * inverse.0, pi.1 * inverse.1, pi.2 * inverse.2)
-      let largestK = Swift.max(k.0.magnitude, k.1.magnitude, k.2.magnitude)
-      let largestPi = Swift.max(
-        pi.0.magnitude, pi.1.magnitude, pi.2.magnitude)
-      let reach =
-        ρ * (axis.length + largestK * r3Length) * largestInverse
-        * (1 + 0x1p-19)
-      let scale =
-        (largestPi + far * (axis.length + r3Length)) * largestInverse
-      let pad = 0x1p-30 * condition * (1 + scale + scale * scale)
+      let (reach, pad) = cornerSlack(
+        axis, k: Swift.max(k.0.magnitude, k.1.magnitude, k.2.magnitude),
+        pi: Swift.max(pi.0.magnitude, pi.1.magnitude, pi.2.magnitude),
+        inverseP3: largestInverse, far: far, reach: ρ)
       let lower = Swift.min(k.0, k.1, k.2) - reach - pad
       let upper = Swift.max(k.0, k.1, k.2) + reach + pad
       guard lower.isFinite, upper.isFinite else { return nil }
