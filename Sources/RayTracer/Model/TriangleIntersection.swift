@@ -52,7 +52,20 @@ public enum TriangleIntersection {
     _ ray: WatertightRay<S>, _ v0: Vector3<S>, _ v1: Vector3<S>,
     _ v2: Vector3<S>, after tMin: S, before tMax: S
   ) -> (t: S, u: S, v: S, w: S)? {
-    guard let edges = edgeFunctions(ray, v0, v1, v2) else { return nil }
+    intersect(
+      ray, PermutedTriangle(ray, v0, v1, v2), after: tMin, before: tMax)
+  }
+
+  /// `intersect` for a triangle already carried into the ray's permuted
+  /// frame, the same arithmetic and so the same bits: a triangle tested
+  /// against many rays that share origin and permutation (a screen tile's)
+  /// is permuted once for all of them.
+  @inlinable @inline(__always)
+  public static func intersect<S: RayScalar>(
+    _ ray: WatertightRay<S>, _ triangle: PermutedTriangle<S>,
+    after tMin: S, before tMax: S
+  ) -> (t: S, u: S, v: S, w: S)? {
+    guard let edges = edgeFunctions(ray, triangle) else { return nil }
     let (u, v, w) = (edges.u, edges.v, edges.w)
     let determinant = u + v + w
     guard determinant != 0 else { return nil }
@@ -77,7 +90,8 @@ public enum TriangleIntersection {
     _ ray: WatertightRay<S>, _ v0: Vector3<S>, _ v1: Vector3<S>,
     _ v2: Vector3<S>
   ) -> Bool {
-    guard let edges = edgeFunctions(ray, v0, v1, v2) else { return false }
+    guard let edges = edgeFunctions(ray, PermutedTriangle(ray, v0, v1, v2))
+    else { return false }
     return edges.u + edges.v + edges.w != 0
   }
 
@@ -86,25 +100,19 @@ public enum TriangleIntersection {
   /// disagree (the ray passes outside).
   @inlinable @inline(__always)
   static func edgeFunctions<S: RayScalar>(
-    _ ray: WatertightRay<S>, _ v0: Vector3<S>, _ v1: Vector3<S>,
-    _ v2: Vector3<S>
+    _ ray: WatertightRay<S>, _ triangle: PermutedTriangle<S>
   ) -> (u: S, v: S, w: S, az: S, bz: S, cz: S)? {
-    // The vertices relative to the origin, in the permuted frame.
-    let a = v0 - ray.origin
-    let b = v1 - ray.origin
-    let c = v2 - ray.origin
-    let az = a[ray.kz]
-    let bz = b[ray.kz]
-    let cz = c[ray.kz]
+    let (a, b, c) = (triangle.a, triangle.b, triangle.c)
+    let (az, bz, cz) = (a.z, b.z, c.z)
     // Shear so that the direction becomes (0, 0, 1/Sz): each vertex's
     // projection is a function of that vertex alone, identical for every
     // triangle sharing it.
-    let ax = a[ray.kx] - ray.shearX * az
-    let ay = a[ray.ky] - ray.shearY * az
-    let bx = b[ray.kx] - ray.shearX * bz
-    let by = b[ray.ky] - ray.shearY * bz
-    let cx = c[ray.kx] - ray.shearX * cz
-    let cy = c[ray.ky] - ray.shearY * cz
+    let ax = a.x - ray.shearX * az
+    let ay = a.y - ray.shearY * az
+    let bx = b.x - ray.shearX * bz
+    let by = b.y - ray.shearY * bz
+    let cx = c.x - ray.shearX * cz
+    let cy = c.y - ray.shearY * cz
     // Edge functions: u of edge v1→v2, v of v2→v0, w of v0→v1.
     var u = cx * by - cy * bx
     var v = ax * cy - ay * cx
@@ -153,6 +161,43 @@ public enum TriangleIntersection {
       return first.error - second.error
     }
     return (edge(cx, by, cy, bx), edge(ax, cy, ay, cx), edge(bx, ay, by, ax))
+  }
+}
+
+/// A triangle's vertices relative to a ray's origin, in the ray's permuted
+/// frame (x, y, z = the ray's kx, ky, kz components): the first step of
+/// the watertight test, before the shear. It depends on the ray only
+/// through its origin and permutation, so rays that share both (a screen
+/// tile's, as a rule) can share it.
+public struct PermutedTriangle<S: RayScalar>: Sendable {
+  public var a: Vector3<S>
+  public var b: Vector3<S>
+  public var c: Vector3<S>
+
+  @inlinable @inline(__always)
+  public init(
+    _ ray: WatertightRay<S>, _ v0: Vector3<S>, _ v1: Vector3<S>,
+    _ v2: Vector3<S>
+  ) {
+    let a = v0 - ray.origin
+    let b = v1 - ray.origin
+    let c = v2 - ray.origin
+    self.a = Vector3(a[ray.kx], a[ray.ky], a[ray.kz])
+    self.b = Vector3(b[ray.kx], b[ray.ky], b[ray.kz])
+    self.c = Vector3(c[ray.kx], c[ray.ky], c[ray.kz])
+  }
+}
+
+extension WatertightRay {
+  /// Whether `PermutedTriangle` gives the same vertices, bit for bit, for
+  /// this ray as for `other`: the same permutation and the same origin,
+  /// zeros' signs included (v − 0 and v − (−0) differ for v = −0).
+  @inlinable @inline(__always)
+  public func sharesFrame(with other: WatertightRay) -> Bool {
+    func same(_ p: S, _ q: S) -> Bool { p == q && p.sign == q.sign }
+    return kx == other.kx && ky == other.ky && kz == other.kz
+      && same(origin.x, other.origin.x) && same(origin.y, other.origin.y)
+      && same(origin.z, other.origin.z)
   }
 }
 

@@ -82,4 +82,63 @@ final class TriangleIntersectionTests: XCTestCase {
       TriangleIntersection.intersect(
         ray, v0, v1, v2, after: -.infinity, before: .infinity))
   }
+
+  /// `sharesFrame` holds exactly when two rays have one permutation and one
+  /// origin, zeros' signs included; a triangle permuted for one ray then
+  /// gives every other ray sharing its frame the bits of the ray's own
+  /// test (the screen tiles permute each triangle once per tile). Rays
+  /// that do not share it must be seen not to: permuted for the wrong
+  /// frame, their tests differ.
+  func checkSharedFrame<T: RayScalar>(_: T.Type) {
+    var generator = SplitMix64(seed: 0x7065_726d_7574_6521)
+    var (shared, differs) = (0, 0)
+    for _ in 0..<20_000 {
+      func point(_ scale: T) -> Vector3<T> {
+        Vector3(
+          generator.uniform(-1...1), generator.uniform(-1...1),
+          generator.uniform(-1...1)) * scale
+      }
+      let origin = point(2)
+      let toward = point(1) + Vector3(0, 0, 3)
+      let (v0, v1, v2) = (
+        toward + point(1), toward + point(1), toward + point(1)
+      )
+      // Directions toward the triangle, most with the same largest axis.
+      func ray() -> WatertightRay<T> {
+        WatertightRay(
+          Ray(
+            origin: origin,
+            direction: (toward + point(3) - origin).normalized()))
+      }
+      let (first, second) = (ray(), ray())
+      let same =
+        first.kx == second.kx && first.ky == second.ky && first.kz == second.kz
+      XCTAssertEqual(first.sharesFrame(with: second), same, "\(T.self)")
+      let own = TriangleIntersection.intersect(
+        second, v0, v1, v2, after: 0, before: .infinity)
+      let borrowed = TriangleIntersection.intersect(
+        second, PermutedTriangle(first, v0, v1, v2), after: 0,
+        before: .infinity)
+      if same {
+        shared += 1
+        XCTAssertEqual(own?.t, borrowed?.t, "\(T.self)")
+        XCTAssertEqual(own?.u, borrowed?.u, "\(T.self)")
+        XCTAssertEqual(own?.w, borrowed?.w, "\(T.self)")
+      } else if own?.t != borrowed?.t {
+        differs += 1
+      }
+    }
+    XCTAssertGreaterThan(shared, 5_000, "\(T.self)")
+    XCTAssertGreaterThan(differs, 100, "\(T.self)")
+    // The same permutation from origins +0 and −0 is not one frame.
+    let direction = Vector3<T>(0.1, 0.2, 1).normalized()
+    let plus = WatertightRay(Ray(origin: Vector3<T>.zero, direction: direction))
+    let minus = WatertightRay(
+      Ray(origin: Vector3<T>(-0.0, 0, 0), direction: direction))
+    XCTAssertTrue(plus.sharesFrame(with: plus))
+    XCTAssertFalse(plus.sharesFrame(with: minus))
+  }
+
+  func testSharedFrame_Float() { checkSharedFrame(Float.self) }
+  func testSharedFrame_Double() { checkSharedFrame(Double.self) }
 }

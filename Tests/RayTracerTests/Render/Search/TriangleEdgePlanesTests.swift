@@ -55,7 +55,8 @@ final class TriangleEdgePlanesTests: XCTestCase {
         excludedNearEdges += 1
         let ray = WatertightRay(Ray(origin: eye, direction: direction))
         XCTAssertNil(
-          TriangleIntersection.edgeFunctions(ray, v0, v1, v2),
+          TriangleIntersection.edgeFunctions(
+            ray, PermutedTriangle(ray, v0, v1, v2)),
           "excluded a ray the watertight test finds inside: \(S.self) "
             + "eye \(eye), corners \(v0) \(v1) \(v2), direction \(direction)")
       }
