@@ -121,9 +121,13 @@ final class TriangleIntersectionTests: XCTestCase {
         before: .infinity)
       if same {
         shared += 1
-        XCTAssertEqual(own?.t, borrowed?.t, "\(T.self)")
-        XCTAssertEqual(own?.u, borrowed?.u, "\(T.self)")
-        XCTAssertEqual(own?.w, borrowed?.w, "\(T.self)")
+        // The same bits: each value equal and of the same sign (a zero's
+        // too), a miss for both or neither.
+        func bits(_ hit: (t: T, u: T, v: T, w: T)?) -> [String] {
+          hit.map { [$0.t, $0.u, $0.v, $0.w].map { "\($0) \($0.sign)" } }
+            ?? []
+        }
+        XCTAssertEqual(bits(own), bits(borrowed), "\(T.self)")
       } else if own?.t != borrowed?.t {
         differs += 1
       }
