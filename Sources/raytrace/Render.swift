@@ -1,5 +1,6 @@
 import Dispatch
 import ArgumentParser
+import enum Course.CourseEngine
 import RayTracer
 
 struct Render: ParsableCommand {
@@ -84,31 +85,32 @@ struct Render: ParsableCommand {
   @Option(
     help:
       """
-        Precision of the geometry and shading: double is exact to a few ulps \
-        on every scene of the stiff suite; float is faster but loses planets \
-        and far-from-origin scenes.
+        The fast engine's precision: double (the default) is exact to a few \
+        ulps on every scene of the stiff suite; float is faster but loses \
+        planets and far-from-origin scenes. Float implies --engine fast.
         """
   )
-  var precision: Precision = .double
+  var precision: Precision?
 
   @Option(
     help:
       """
-        Sphere intersection: stable (cancellation-free) or naive (the \
-        course's textbook formula, for comparison).
+        The fast engine's sphere intersection: stable (cancellation-free, \
+        the default) or naive (the textbook formula, for comparison). Naive \
+        implies --engine fast.
         """
   )
-  var intersection: IntersectionMethod = .stable
+  var intersection: IntersectionMethod?
 
   @Option(
     help: ArgumentHelp(
       """
-        Renderer: fast (the default) or course (the course's loop over every \
-        object by the hit protocol, in double precision; the same image, \
-        slower).
+        Renderer: course (the default: the course's loop over every object \
+        by the hit protocol, Sources/Course) or fast (the same scene within \
+        a stated bound, much faster, exact at any scale).
         """,
       valueName: "engine"))
-  var engine: Engine = .fast
+  var engine: Engine?
 
   @Option(
     help:
@@ -276,17 +278,27 @@ struct Render: ParsableCommand {
     }
     var settings = RenderSettings(
       width: width, height: height, outputs: [],
-      style: style ?? (input != nil ? .mit : .course), method: intersection,
-      precision: precision, threads: threads ?? Renderer.availableCores)
+      style: style ?? (input != nil ? .mit : .course),
+      method: intersection ?? .stable, precision: precision ?? .double,
+      threads: threads ?? Renderer.availableCores)
     settings.samples = samples
     settings.filter = filter
-    guard engine == .fast || precision == .double else {
+    // The course engine computes in double by the stable quadratic: a
+    // request for float or naive asks for the fast engine, unless the
+    // course engine is named.
+    let fastOnly = precision == .float || intersection == .naive
+    switch engine {
+    case .course? where precision == .float:
       throw ValidationError(
         "--engine course computes in double, the scene's precision; drop "
-          + "--precision float or use --engine fast."
-      )
+          + "--precision float or use --engine fast.")
+    case .course? where intersection == .naive:
+      throw ValidationError(
+        "--engine course solves the sphere's quadratic one way (stable); "
+          + "drop --intersection naive or use --engine fast.")
+    case let engine?: settings.engine = engine
+    case nil: settings.engine = fastOnly ? .fast : .course
     }
-    settings.engine = engine
     guard (0...1000).contains(repeats) else {
       throw ValidationError(
         "--repeat must be between 0 and 1000; got \(repeats).")
@@ -349,7 +361,8 @@ struct Render: ParsableCommand {
       }
       report = try RenderJob.run(
         scene: scene, settings: plan.settings, files: plan.files,
-        depthRange: plan.depthRange, png: png, progress: progress)
+        depthRange: plan.depthRange, png: png,
+        courseEngine: Self.courseEngine, progress: progress)
     } catch let error as SceneError {
       // A texture that cannot be read, named as a scene error is.
       printError(error.description)
@@ -361,6 +374,14 @@ struct Render: ParsableCommand {
     if stats {
       printStats(report, scenePath: plan.scenePath, parseSeconds: parseSeconds)
     }
+    if engine == nil, plan.settings.engine == .course,
+      report.firstRenderSeconds > Self.slowCourseRender
+    {
+      printError(
+        "raytrace: note: the course engine took "
+          + "\(formatted(report.firstRenderSeconds)) s; --engine fast renders "
+          + "the same scene in a fraction of that.")
+    }
     // Kept until the process exits rather than freed here: a scene of 10⁶
     // objects is freed one object at a time (30 ms), memory the operating
     // system takes back at once when the process ends.
@@ -368,5 +389,18 @@ struct Render: ParsableCommand {
   }
 
   nonisolated(unsafe) private static var keptUntilExit: Scene?
+
+  /// The course engine (the course target), handed to `RenderJob`.
+  static let courseEngine: CourseRenderer = { scene, textures, settings, progress in
+    CourseEngine.render(
+      scene, textures: textures, settings: settings, progress: progress)
+  }
+
+  /// Seconds of a default render after which the fast engine is named.
+  static let slowCourseRender = 2.0
+
+  private func formatted(_ seconds: Double) -> String {
+    String(Double((seconds * 10).rounded()) / 10)
+  }
 
 }

@@ -273,3 +273,28 @@ func differences<S: RayScalar>(_ a: RenderBuffers<S>, _ b: RenderBuffers<S>)
   }
   return count
 }
+
+// MARK: - The project's files
+
+enum ProjectFiles {
+  /// Tests/RayTracerTests/TestUtilities.swift → the package.
+  static var projectFolder: String {
+    var parts = "\(#filePath)".split(
+      separator: "/", omittingEmptySubsequences: false)
+    parts.removeLast(3)
+    return parts.joined(separator: "/")
+  }
+
+  /// Every scene of `scenes/` (both formats) and `scenes/stiff/`.
+  static func projectScenes() throws -> [String] {
+    var paths: [String] = []
+    for folder in ["scenes", "scenes/stiff"] {
+      let path = "\(projectFolder)/\(folder)"
+      for name in try listFolder(path).sorted()
+      where name.hasSuffix(".txt") || name.hasSuffix(".plist") {
+        paths.append("\(path)/\(name)")
+      }
+    }
+    return paths
+  }
+}

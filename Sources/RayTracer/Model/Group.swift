@@ -30,6 +30,9 @@ public enum SceneObject<Scalar: RayScalar>: Hashable, Sendable {
   case mesh(TriangleMesh<Scalar>)
   case group(Group<Scalar>)
   indirect case transform(Transform<Scalar>)
+  /// A shape of a kind the scene's readers and the fast engine do not
+  /// specialise, hit through its `Hittable` conformance in Double.
+  case shape(Shape)
 }
 
 extension SceneObject: Intersectable {
@@ -50,6 +53,16 @@ extension SceneObject: Intersectable {
       group.intersect(ray, after: tMin, before: tMax, method: method)
     case .transform(let transform):
       transform.intersect(ray, after: tMin, before: tMax, method: method)
+    case .shape(let shape):
+      shape.object.intersect(
+        Ray(origin: Vector3(ray.origin), direction: Vector3(ray.direction)),
+        after: Double(tMin), before: Double(tMax)
+      ).map {
+        Hit(
+          t: Scalar($0.t), normal: Vector3($0.normal),
+          materialIndex: $0.materialIndex,
+          textureCoordinate: $0.textureCoordinate.map(TextureCoordinate.init))
+      }
     }
   }
 }

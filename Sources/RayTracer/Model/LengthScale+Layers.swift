@@ -70,6 +70,8 @@ extension LengthScale {
     for ellipsoid in all.transformedSpheres {
       place(.ellipsoid(ellipsoid)) { $0.transformedSpheres.append(ellipsoid) }
     }
+    // Other shapes are tested in the world's units, whatever the scale.
+    main.shapes = all.shapes
     return Layers(
       main: main, exponent: exponent,
       others: others.sorted { $0.key > $1.key }.map {

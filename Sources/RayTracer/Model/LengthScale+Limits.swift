@@ -81,6 +81,7 @@ extension LengthScale {
       case .group(let group):
         for child in group.objects { measure(child) }
       case .transform: add(Group([object]).flattened())
+      case .shape: break
       }
     }
 

@@ -83,6 +83,8 @@ public enum LengthScale {
     case .group(let group):
       for child in group.objects { forEachPrimitive(in: child, body) }
     case .transform: Group([object]).flattened().forEach(body)
+    // Other shapes are tested in the world's units, at no scale.
+    case .shape: break
     }
   }
 
@@ -182,6 +184,9 @@ extension Primitives {
         sphere: $0.sphere, matrix: $0.matrix.rowsScaled(by: factor),
         inverse: $0.inverse.columnsScaled(by: 1 / factor))
     }
+    // Kept in the world's units: the fast engine tests them with the
+    // world's ray (`CompiledScene.testShapes`).
+    result.shapes = shapes
     return result
   }
 }
@@ -211,6 +216,12 @@ extension SceneObject {
           matrix: transform.matrix.rowsScaled(by: factor),
           inverse: transform.inverse.columnsScaled(by: 1 / factor),
           object: transform.object))
+    case .shape(let shape):
+      .shape(
+        Shape(
+          PlacedShape(
+            shape.object, matrix: .uniformScale(Double(factor)),
+            inverse: .uniformScale(1 / Double(factor)))))
     }
   }
 }

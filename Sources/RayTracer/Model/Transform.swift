@@ -81,6 +81,9 @@ public struct Primitives<Scalar: RayScalar>: Sendable {
   /// Loose triangles and meshes in file order.
   public var triangles = TriangleList<Scalar>()
   public var transformedSpheres: [TransformedSphere<Scalar>] = []
+  /// Shapes of other kinds (`SceneObject.shape`), placed by their
+  /// transforms, in Double and in the world's units whatever the render.
+  public var shapes: [any Hittable] = []
 }
 
 extension Group {
@@ -103,6 +106,8 @@ extension SceneObject {
       return .group(group.placed())
     case .transform:
       return .group(Group(Group([self]).flattened()))
+    case .shape:
+      return self
     }
   }
 }
@@ -121,6 +126,7 @@ extension Group {
         Transform(
           matrix: $0.matrix, inverse: $0.inverse, object: .sphere($0.sphere)))
     }
+    objects += all.shapes.map { .shape(Shape($0)) }
     self.init(objects)
   }
 }
@@ -144,6 +150,7 @@ extension Primitives: Intersectable {
     planes.forEach(test)
     triangles.forEach(test)
     transformedSpheres.forEach(test)
+    shapes.forEach { test(SceneObject<Scalar>.shape(Shape($0))) }
     return nearest
   }
 }
@@ -163,7 +170,7 @@ extension Group {
       switch object {
       case .sphere: counts.spheres += 1
       case .plane: counts.planes += 1
-      case .triangle, .mesh: break
+      case .triangle, .mesh, .shape: break
       case .group(let group): for child in group.objects { count(child) }
       case .transform(let inner): count(inner.object)
       }
@@ -225,6 +232,16 @@ extension Group {
           transform.map { ($0.0 * inner.matrix, inner.inverse * $0.1) }
           ?? (inner.matrix, inner.inverse)
         collect(inner.object, combined)
+      case .shape(let shape):
+        guard let (matrix, inverse) = transform else {
+          result.shapes.append(shape.object)
+          return
+        }
+        // Only a Double scene is read: the generic matrix is Double's.
+        result.shapes.append(
+          PlacedShape(
+            shape.object, matrix: Matrix4<Double>(matrix),
+            inverse: Matrix4<Double>(inverse)))
       }
     }
     for object in objects {

@@ -50,12 +50,19 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   var trianglePlanes: [LargeTrianglePlane<Scalar>] = []
   /// Triangles left in order for `ScreenTiles` to project, without a
   /// hierarchy (see `triangleProjectionThreshold`).
-  internal(set) var projectsTriangles = false
+  var projectsTriangles = false
   var triangleHierarchy: BoundingVolumeHierarchy<Scalar>?
   var wideTriangleHierarchy: WideHierarchy<Scalar>?
   /// Spheres under transforms that are not similarities.
   var ellipsoids: [EllipsoidRecord<Kernel>] = []
   var ellipsoidMaterials: [Int32] = []
+  /// Shapes of kinds the engine does not specialise, in the world's units,
+  /// each tested through its own `Hittable.intersect` after a check of its
+  /// box (`testShapes`); empty for every scene of the readers' own kinds.
+  var shapes: [any Hittable] = []
+  var shapeBoxes: [BoundingBox?] = []
+  /// The eye in the world, in Double: where the shapes' rays start.
+  let shapeEye: Vector3<Double>
   /// Objects the scene's common scale cannot hold, each group compiled at
   /// its own (`LengthScale.layers`) and searched after this scene's own
   /// search (`Renderer.store`); empty for every ordinary scene.
@@ -123,6 +130,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   ) {
     camera = PerspectiveCamera(scene.camera)
     eye = Vector3(scene.camera.center)
+    shapeEye = scene.camera.center
     lengthScale = Scalar(LengthScale.factor(exponent))
     let all: Primitives<Double>
     let eyeDouble: Vector3<Double>
@@ -237,6 +245,8 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       ellipsoidMaterials.append(
         Int32(truncatingIfNeeded: ellipsoid.sphere.materialIndex))
     }
+    shapes = all.shapes
+    shapeBoxes = shapes.map(\.boundingBox)
   }
 
   /// The sphere count from which single-sample renders project spheres
@@ -268,6 +278,8 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     /// here they made every hit record, sphere hits included, twice as big.
     case triangle(Int)
     case ellipsoid(Int)
+    /// One of `shapes`.
+    case shape(Int)
   }
 
   /// The nearest hit in (0, ∞) of a camera ray through the eye, its
@@ -341,6 +353,44 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
           before: $0)
       }
     }
+    if !shapes.isEmpty { testShapes(ray, &nearest) }
+  }
+
+  /// Offers the hits of the other shapes to `nearest`, in order: each is
+  /// asked, in Double and in the world's units, for a hit strictly before
+  /// the best so far, when the ray meets its box.
+  func testShapes(
+    _ ray: CameraRay<Scalar>, _ nearest: inout NearestHit<Scalar, Nearest>
+  ) {
+    let world = shapeRay(ray)
+    let reciprocal = Vector3(
+      1 / world.direction.x, 1 / world.direction.y, 1 / world.direction.z)
+    let scale = Double(lengthScale)
+    for index in shapes.indices {
+      nearest.test(.shape(index)) { before in
+        let tMax = Double(before) * scale
+        if let box = shapeBoxes[index],
+          !box.isHit(by: world, reciprocal: reciprocal, after: 0, before: tMax)
+        {
+          return nil
+        }
+        guard
+          let hit = shapes[index].intersect(world, after: 0, before: tMax)
+        else { return nil }
+        let t = Scalar(hit.t / scale)
+        return t > 0 && t < before ? t : nil
+      }
+    }
+  }
+
+  /// A camera ray as the shapes see it: from the eye in the world.
+  func shapeRay(_ ray: CameraRay<Scalar>) -> Ray<Double> {
+    Ray(origin: shapeEye, direction: Vector3<Double>(ray.direction))
+  }
+
+  /// The hit of shape `index` found by `testShapes`: its nearest.
+  func shapeHit(_ index: Int, _ ray: CameraRay<Scalar>) -> Hit<Double>? {
+    shapes[index].intersect(shapeRay(ray), after: 0, before: .infinity)
   }
 
   /// The unit normal of the hit `what` at `t`; for a triangle, from the
@@ -365,18 +415,24 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       ellipsoids[index].matrix.transformNormal(
         Kernel.normal(
           ellipsoids[index].sphere, ellipsoids[index].localRay(ray), t: t))
+    case .shape(let index):
+      Vector3(shapeHit(index, ray)?.normal ?? .zero)
     }
   }
 
   /// The index into `materials` of the object hit.
   @inline(__always)
-  func materialIndex(of what: Nearest) -> Int {
+  func materialIndex(
+    of what: Nearest, _ ray: CameraRay<Scalar>? = nil
+  ) -> Int {
     let index: Int32
     switch what {
     case .sphere(let sphere): index = sphereMaterials[sphere]
     case .plane(let plane): index = planeMaterials[plane]
     case .triangle(let triangle): index = triangleMaterials[triangle]
     case .ellipsoid(let ellipsoid): index = ellipsoidMaterials[ellipsoid]
+    case .shape(let shape):
+      return ray.flatMap { shapeHit(shape, $0)?.materialIndex } ?? 0
     }
     return Int(index)
   }
@@ -394,7 +450,17 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     _ what: Nearest, _ ray: CameraRay<Scalar>, point: Vector3<Scalar>,
     normal: Vector3<Scalar>, attenuate: Bool
   ) -> RGB<Scalar> {
-    let index = materialIndex(of: what)
+    let index = materialIndex(of: what, ray)
+    if !textures.isEmpty, case .shape(let shape) = what,
+      let texture = textures[index],
+      let coordinate = shapeHit(shape, ray)?.textureCoordinate
+    {
+      var material = surfaces[index]
+      material.diffuse = texture.color(at: TextureCoordinate<Scalar>(coordinate))
+      return material.shade(
+        point: point, normal: normal, viewDirection: ray.direction,
+        ambient: ambient, lights: lights, attenuate: attenuate)
+    }
     if !textures.isEmpty, case .triangle(let triangle) = what,
       let texture = textures[index],
       let coordinates = triangleTextureCoordinates[triangle],

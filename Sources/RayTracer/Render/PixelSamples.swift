@@ -9,7 +9,7 @@
 ///
 /// The jitter comes from a generator seeded by the pixel's index, so the
 /// image is the same for any thread count and either engine.
-struct PixelSamples<R: RayScalar>: IteratorProtocol {
+public struct PixelSamples<R: RayScalar>: IteratorProtocol {
   private let camera: PerspectiveCamera<R>
   private let filter: PixelFilter
   private let aspect: R
@@ -23,7 +23,7 @@ struct PixelSamples<R: RayScalar>: IteratorProtocol {
   private var stratum = 0
 
   @inline(__always)
-  init(
+  public init(
     column: Int, row: Int, camera: PerspectiveCamera<R>,
     settings: RenderSettings
   ) {
@@ -50,10 +50,10 @@ struct PixelSamples<R: RayScalar>: IteratorProtocol {
   }
 
   /// The number of samples: the largest square ≤ `settings.samples`.
-  var count: Int { strata * strata }
+  public var count: Int { strata * strata }
 
   @inline(__always)
-  mutating func next() -> Vector3<R>? {
+  public mutating func next() -> Vector3<R>? {
     nextThroughScreen()?.normalizedByReciprocal()
   }
 

@@ -69,6 +69,14 @@ public struct RenderReport: Sendable {
   }
 }
 
+/// A renderer of the scene as the course models it, in Double: the course
+/// engine (`CourseEngine.render` in the course target), which this library
+/// does not import, handed to `RenderJob.run` by its caller.
+public typealias CourseRenderer = @Sendable (
+  _ scene: Scene, _ textures: [Texture?], _ settings: RenderSettings,
+  _ progress: (@Sendable (Int) -> Void)?
+) -> RenderBuffers<Double>
+
 /// A whole render: compile the scene for the chosen precision and method,
 /// render the requested outputs, and write the files all or none
 /// (`OutputBatch`, whose temporary files exist from before the render).
@@ -76,10 +84,14 @@ public enum RenderJob {
   /// Renders `scene` into `files`. Textures are read here, and only when a
   /// shaded image is among the files (a `SceneError` naming the texture
   /// when one cannot be read), unless `textures` gives them already.
+  ///
+  /// - Precondition: `courseEngine` is given when `settings.engine` is
+  ///   `.course`.
   public static func run(
     scene: Scene, settings requested: RenderSettings, files: [OutputFile],
     depthRange: ClosedRange<Double>? = nil, png: PNGOptions = .default,
     textures given: [Texture?]? = nil,
+    courseEngine: CourseRenderer? = nil,
     progress: (@Sendable (Int) -> Void)? = nil
   ) throws -> RenderReport {
     var settings = requested
@@ -95,7 +107,8 @@ public enum RenderJob {
       settings.outputs.contains(.shaded)
       ? try given ?? TextureLoader.load(for: scene) : []
     var report = try run(
-      scene, textures, settings, files, depthRange, png, progress)
+      scene, textures, settings, files, depthRange, png, courseEngine,
+      progress)
     report.texturedMaterials = scene.materials.count {
       $0.texturePath != nil
     }
@@ -111,7 +124,8 @@ public enum RenderJob {
   private static func run(
     _ scene: Scene, _ textures: [Texture?], _ settings: RenderSettings,
     _ files: [OutputFile], _ depthRange: ClosedRange<Double>?,
-    _ png: PNGOptions, _ progress: (@Sendable (Int) -> Void)?
+    _ png: PNGOptions, _ courseEngine: CourseRenderer?,
+    _ progress: (@Sendable (Int) -> Void)?
   ) throws -> RenderReport {
     // The temporary files exist from here on, through the render: a
     // target that cannot be written fails now, and an interrupted render
@@ -121,7 +135,10 @@ public enum RenderJob {
       settings: settings, files: files, depthRange: depthRange, png: png,
       batch: batch)
     if settings.engine == .course {
-      return try runCourse(scene, textures, output, progress)
+      guard let courseEngine else {
+        preconditionFailure("a course render needs the course engine")
+      }
+      return try runCourse(courseEngine, scene, textures, output, progress)
     }
     switch (settings.precision, settings.method) {
     case (.float, .naive):
@@ -189,7 +206,8 @@ public enum RenderJob {
   /// The course engine's render (`CourseEngine`), written as the fast
   /// engine's is.
   private static func runCourse(
-    _ scene: Scene, _ textures: [Texture?], _ output: Output,
+    _ courseEngine: CourseRenderer, _ scene: Scene, _ textures: [Texture?],
+    _ output: Output,
     _ progress: (@Sendable (Int) -> Void)?
   ) throws -> RenderReport {
     var clock = Stopwatch()
@@ -197,9 +215,7 @@ public enum RenderJob {
       output.settings.repeats, progress: progress, clock: &clock
     ) { progress, _ in
       (
-        CourseEngine.render(
-          scene, textures: textures, settings: output.settings,
-          progress: progress),
+        courseEngine(scene, textures, output.settings, progress),
         .everyObject, .everyTriangle
       )
     }

@@ -29,7 +29,7 @@ public struct RenderSettings: Sendable {
   public var style: ImageStyle
   public var method: IntersectionMethod
   public var precision: Precision
-  /// Which renderer runs: the same image either way.
+  /// Which renderer runs.
   public var engine: Engine = .fast
   /// Worker threads; the image is the same, bit for bit, for any count.
   public var threads: Int
@@ -75,14 +75,16 @@ public struct RenderSettings: Sendable {
   }
 }
 
-/// The two renderers, which draw the same images bit for bit.
+/// The two renderers, which draw the same scene within a stated bound
+/// (docs/ENGINES.md).
 public enum Engine: String, CaseIterable, Sendable {
-  /// `Renderer`: the scene compiled into flat records for one precision,
-  /// searched through screen tiles or a hierarchy. The default.
-  case fast
-  /// `CourseEngine`: the course's loop over every object by the hit
-  /// protocol, in Double. The oracle, and the code to read.
+  /// `CourseEngine` (the course target): the course's loop over every
+  /// object by the hit protocol, in Double. The default: the code a
+  /// student reads and edits.
   case course
+  /// `Renderer`: the scene compiled into flat records for one precision,
+  /// searched through screen tiles or a hierarchy; exact at any scale.
+  case fast
 }
 
 /// The reconstruction filter of supersampled shading.

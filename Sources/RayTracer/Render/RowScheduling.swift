@@ -9,7 +9,7 @@ extension Renderer {
 
   /// Runs `body` over all rows in batches on `threads` workers (the calling
   /// thread among them), reporting finished rows to `progress`.
-  static func forEachRowBatch(
+  public static func forEachRowBatch(
     rows: Int, threads: Int, progress: (@Sendable (Int) -> Void)?,
     _ body: @Sendable (Range<Int>) -> Void
   ) {

@@ -178,6 +178,7 @@ extension SceneObject {
     case .triangle: "triangle"
     case .mesh: "mesh"
     case .transform: "transform"
+    case .shape: "shape"
     }
   }
 }

@@ -46,7 +46,7 @@ final class ImageConventionsTests: XCTestCase {
   /// values, byte for byte: every project scene, both styles, one sample
   /// and supersampled, spheres through screen tiles and triangles too.
   func testQuantizedOutputs_SameImagesAsFromValues() throws {
-    for path in try CourseEngineTests.projectScenes() {
+    for path in try ProjectFiles.projectScenes() {
       for style in ImageStyle.allCases {
         let scene = try SceneReader.read(
           contentsOf: path, options: SceneOptions(style: style))

@@ -9,7 +9,7 @@ import XCTest
 /// supersampled.
 final class RendererRecyclingTests: XCTestCase {
   func compiled(_ name: String) throws -> CompiledScene<StableKernel<Double>> {
-    let path = "\(CourseEngineTests.projectFolder)/scenes/\(name)"
+    let path = "\(ProjectFiles.projectFolder)/scenes/\(name)"
     return CompiledScene(
       try SceneReader.read(
         contentsOf: path, options: SceneOptions(style: .course)))

@@ -1,0 +1,36 @@
+import RayTracer
+
+/// A list of objects hit as one (the course's `Group`).
+public struct Group: Hittable {
+  public var objects: [any Hittable]
+
+  public init(_ objects: [any Hittable] = []) {
+    self.objects = objects
+  }
+
+  /// The nearest hit of all the objects: each is asked only for a hit
+  /// before the nearest so far, so a tie goes to the object listed first.
+  public func intersect(
+    _ ray: Ray<Double>, after tMin: Double, before tMax: Double
+  ) -> Hit<Double>? {
+    var nearest: Hit<Double>?
+    for object in objects {
+      if let hit = object.intersect(
+        ray, after: tMin, before: nearest?.t ?? tMax)
+      {
+        nearest = hit
+      }
+    }
+    return nearest
+  }
+
+  /// The union of the objects' boxes; nil when one has no bound.
+  public var boundingBox: BoundingBox? {
+    var box: BoundingBox?
+    for object in objects {
+      guard let next = object.boundingBox else { return nil }
+      box = box?.union(next) ?? next
+    }
+    return box
+  }
+}

@@ -1,0 +1,50 @@
+import RayTracer
+
+/// The course's objects for a scene as the readers give it: the one place
+/// that names each kind of object for the course engine.
+enum SceneObjects {
+  /// The scene's root group as the course's objects.
+  static func group(_ group: RayTracer.Group<Double>) -> Group {
+    Group(group.objects.compactMap(object))
+  }
+
+  /// One object of the scene as the course's; nil for a transform with no
+  /// inverse, which nothing can hit.
+  static func object(_ object: SceneObject<Double>) -> (any Hittable)? {
+    switch object {
+    case .sphere(let sphere):
+      return Sphere(
+        center: sphere.center, radius: sphere.radius,
+        materialIndex: sphere.materialIndex)
+    case .plane(let plane):
+      return Plane(
+        normal: plane.normal, offset: plane.offset,
+        materialIndex: plane.materialIndex)
+    case .triangle(let triangle):
+      return Self.triangle(triangle)
+    case .mesh(let mesh):
+      return TriangleMesh(mesh.map(Self.triangle))
+    case .group(let inner):
+      return group(inner)
+    case .transform(let transform):
+      return self.object(transform.object).flatMap {
+        Transform(matrix: transform.matrix, object: $0)
+      }
+    case .shape(let shape):
+      return shape.object
+    }
+  }
+
+  static func triangle(_ triangle: RayTracer.Triangle<Double>) -> Triangle {
+    var result = Triangle(
+      triangle.v0, triangle.v1, triangle.v2,
+      materialIndex: triangle.materialIndex)
+    if let normals = triangle.vertexNormals {
+      result.normals = (normals.n0, normals.n1, normals.n2)
+    }
+    if let coordinates = triangle.textureCoordinates {
+      result.textureCoordinates = (coordinates.t0, coordinates.t1, coordinates.t2)
+    }
+    return result
+  }
+}
