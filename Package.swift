@@ -110,38 +110,56 @@ let package = Package(
   name: "raytrace",
   products: [
     .executable(name: "raytrace", targets: ["raytrace"]),
-    .library(name: "RayTracer", targets: ["RayTracer"]),
     .library(name: "Course", targets: ["Course"]),
+    .library(
+      name: "RayTracer",
+      targets: ["SceneModel", "SceneIO", "FastEngine", "Measurement"]),
   ],
   dependencies: dependencies,
+  // Targets by audience, each importing only those above it in this list:
+  //   SceneModel   vectors, rays, the hit protocol, the scene as read
+  //                (camera, lights, materials, objects), render settings
+  //   Course       the course's shapes and loop: what a student edits
+  //   SceneIO      the scene, mesh and image readers and writers
+  //   FastEngine   the fast engine: records, numerics, search structures
+  //   Measurement  `raytrace report` and `raytrace bench`
+  //   raytrace     the executable: arguments and messages
+  // Course and FastEngine do not import each other: editing the course
+  // rebuilds only it, its tests and the executable.
   targets: standIns + [
     // The system zlib (zlib1g-dev on Debian, part of the SDK on macOS).
     .systemLibrary(
       name: "CZlib",
       providers: [.apt(["zlib1g-dev"]), .brew(["zlib"])]
     ),
-    .target(
-      name: "RayTracer",
-      dependencies: [realModule, "CZlib"]
-    ),
-    // The course's model and loop: what a student reads and edits, and what
-    // renders by default. The fast engine (RayTracer) does not import it.
+    .target(name: "SceneModel", dependencies: [realModule]),
     .target(
       name: "Course",
-      dependencies: ["RayTracer"],
+      dependencies: ["SceneModel"],
       swiftSettings: optimizedInDebugBuilds
+    ),
+    .target(name: "SceneIO", dependencies: ["SceneModel", "CZlib"]),
+    .target(name: "FastEngine", dependencies: ["SceneModel", "SceneIO"]),
+    .target(
+      name: "Measurement",
+      dependencies: ["SceneModel", "SceneIO", "FastEngine", realModule]
     ),
     .executableTarget(
       name: "raytrace",
-      dependencies: ["Course", "RayTracer", argumentParser]
+      dependencies: [
+        "SceneModel", "Course", "SceneIO", "FastEngine", "Measurement",
+        argumentParser,
+      ]
     ),
     .testTarget(
       name: "CourseTests",
-      dependencies: ["Course", "RayTracer"]
+      dependencies: ["Course", "SceneModel", "SceneIO", "FastEngine"]
     ),
     .testTarget(
       name: "RayTracerTests",
-      dependencies: ["RayTracer", "raytrace"]
+      dependencies: [
+        "SceneModel", "SceneIO", "FastEngine", "Measurement", "raytrace",
+      ]
     ),
   ]
 )

@@ -4,7 +4,9 @@
 // the size its header gives, whose every texel a lookup can read, or throw
 // one `BMPReader.Failure` of one line. Anything else stops the fuzzer.
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import SceneIO
+@testable import SceneModel
 
 @_cdecl("LLVMFuzzerTestOneInput")
 public func fuzzBMPReader(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt {

@@ -6,7 +6,9 @@
 // must also smooth and triangulate without trapping. Anything else stops
 // the fuzzer, which saves the input.
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import SceneIO
+@testable import SceneModel
 
 @_cdecl("LLVMFuzzerTestOneInput")
 public func fuzzOBJReader(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt {

@@ -10,7 +10,9 @@
 // reads must compile and render a 4x3 image. Anything else stops the
 // fuzzer, which saves the input.
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import SceneIO
+@testable import SceneModel
 
 @_cdecl("LLVMFuzzerTestOneInput")
 public func fuzzPlistScene(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt {

@@ -26,7 +26,9 @@
 // render NaNs; see the report of the fuzzing run):
 // - the normal of every hit is finite and unit length, the colour finite.
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import SceneIO
+@testable import SceneModel
 
 /// Extra render checks, off by default: see the file header.
 let strictChecks =

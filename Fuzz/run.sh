@@ -21,8 +21,11 @@
 # same sources SwiftPM compiles, instrumented with -sanitize=fuzzer,address:
 #   RealModule, ArgumentParser     the stand-ins, as they are, or the real
 #                                  packages' modules (below)
-#   RayTracer                      -enable-testing: the fuzzer reaches the
-#                                  internal SceneParser.parse(bytes:file:)
+#   SceneModel, Course, SceneIO, FastEngine, Measurement
+#                                  the library's targets in the order they
+#                                  import each other, -enable-testing: the
+#                                  fuzzer reaches the internal
+#                                  SceneParser.parse(bytes:file:)
 #   raytrace                       the executable's sources, @main included,
 #                                  its entry point renamed raytrace_main (as
 #                                  SwiftPM does when tests link an executable)
@@ -151,44 +154,49 @@ compile_argument_parser() {
     "$objects/ArgumentParserToolInfo.o")
 }
 
-build_scene() {
+# The library's targets, each compiled after those it imports.
+library_objects=()
+compile_library() {
   compile_real_module
-  compile RayTracer Sources/RayTracer -enable-testing \
-    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap
+  local module
+  library_objects=()
+  for module in SceneModel Course SceneIO FastEngine Measurement; do
+    compile "$module" "Sources/$module" -enable-testing "${numerics_flags[@]}" \
+      -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap
+    library_objects+=("$objects/$module.o")
+  done
+}
+
+build_scene() {
+  compile_library
   echo "linking fuzz-scene" >&2
   "$swiftc" "${flags[@]}" -I "$objects" \
     -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap "${numerics_flags[@]}" \
-    Fuzz/FuzzSceneParser.swift "$objects/RayTracer.o" "$objects/RealModule.o" \
+    Fuzz/FuzzSceneParser.swift "${library_objects[@]}" "$objects/RealModule.o" \
     -lz -use-ld=lld -o "$objects/fuzz-scene"
 }
 
 build_obj() {
-  compile_real_module
-  compile RayTracer Sources/RayTracer -enable-testing "${numerics_flags[@]}" \
-    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap
+  compile_library
   echo "linking fuzz-obj" >&2
   "$swiftc" "${flags[@]}" -I "$objects" \
     -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap "${numerics_flags[@]}" \
-    Fuzz/FuzzOBJReader.swift "$objects/RayTracer.o" "$objects/RealModule.o" \
+    Fuzz/FuzzOBJReader.swift "${library_objects[@]}" "$objects/RealModule.o" \
     -lz -use-ld=lld -o "$objects/fuzz-obj"
 }
 
 # A harness of the library alone: build_library NAME FILE.
 build_library() {
-  compile_real_module
-  compile RayTracer Sources/RayTracer -enable-testing "${numerics_flags[@]}" \
-    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap
+  compile_library
   echo "linking fuzz-$1" >&2
   "$swiftc" "${flags[@]}" -I "$objects" \
     -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap "${numerics_flags[@]}" \
-    "$2" "$objects/RayTracer.o" "$objects/RealModule.o" \
+    "$2" "${library_objects[@]}" "$objects/RealModule.o" \
     -lz -use-ld=lld -o "$objects/fuzz-$1"
 }
 
 build_cli() {
-  compile_real_module
-  compile RayTracer Sources/RayTracer -enable-testing "${numerics_flags[@]}" \
-    -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap
+  compile_library
   compile_argument_parser
   compile raytrace Sources/raytrace -enable-testing "${numerics_flags[@]}" \
     -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap \
@@ -197,7 +205,7 @@ build_cli() {
   "$swiftc" "${flags[@]}" -I "$objects" \
     -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap "${numerics_flags[@]}" \
     Fuzz/FuzzCommandLine.swift "$objects/raytrace.o" \
-    "${parser_objects[@]}" "$objects/RayTracer.o" \
+    "${parser_objects[@]}" "${library_objects[@]}" \
     "$objects/RealModule.o" -lz -use-ld=lld -o "$objects/fuzz-cli"
 }
 

@@ -1,4 +1,5 @@
-import RayTracer
+import SceneModel
+
 
 /// A binary tree of boxes over a list of objects' boxes, for a mesh's
 /// triangles: each node's box holds its children's, each leaf names a few

@@ -1,5 +1,5 @@
 import Foundation
-import RayTracer
+import SceneModel
 
 /// The course's ray caster, as the slides give it: for every pixel a ray
 /// from the camera; for every object of the scene the hit protocol
@@ -22,7 +22,7 @@ public enum CourseEngine {
     let (width, height) = (settings.width, settings.height)
     let outputs = settings.outputs
     let image = Image(width: width, height: height, outputs: outputs)
-    Renderer.forEachRowBatch(
+    RowBatches.forEach(
       rows: height, threads: settings.threads, progress: progress
     ) { rows in
       for row in rows {

@@ -1,4 +1,5 @@
-import RayTracer
+import SceneModel
+
 
 /// A list of objects hit as one (the course's `Group`).
 public struct Group: Hittable {

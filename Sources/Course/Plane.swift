@@ -1,4 +1,5 @@
-import RayTracer
+import SceneModel
+
 
 /// A plane: the points P with n·P = d (the text format's `normal` and
 /// `offset`).

@@ -1,10 +1,11 @@
-import RayTracer
+import SceneModel
+
 
 /// The course's objects for a scene as the readers give it: the one place
 /// that names each kind of object for the course engine.
 enum SceneObjects {
   /// The scene's root group as the course's objects.
-  static func group(_ group: RayTracer.Group<Double>) -> Group {
+  static func group(_ group: SceneModel.Group<Double>) -> Group {
     Group(group.objects.compactMap(object))
   }
 
@@ -35,7 +36,7 @@ enum SceneObjects {
     }
   }
 
-  static func triangle(_ triangle: RayTracer.Triangle<Double>) -> Triangle {
+  static func triangle(_ triangle: SceneModel.Triangle<Double>) -> Triangle {
     var result = Triangle(
       triangle.v0, triangle.v1, triangle.v2,
       materialIndex: triangle.materialIndex)

@@ -1,4 +1,5 @@
-import RayTracer
+import SceneModel
+
 
 /// A sphere: every point at distance `radius` from `center`.
 public struct Sphere: Hittable {

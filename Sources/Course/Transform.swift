@@ -1,4 +1,5 @@
-import RayTracer
+import SceneModel
+
 
 /// An object placed by a matrix M (the course's `Transform`): the object's
 /// points P appear at M·P.

@@ -1,4 +1,5 @@
-import RayTracer
+import SceneModel
+
 
 /// A triangle (a, b, c), with a normal and texture coordinates at each
 /// vertex when its mesh gives them.

@@ -1,4 +1,5 @@
-import RayTracer
+import SceneModel
+
 
 /// The triangles of a mesh file (the course's `TriangleMesh`), hit through
 /// a hierarchy of boxes built once (`BoxHierarchy`), as the course's mesh

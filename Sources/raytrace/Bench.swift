@@ -1,5 +1,8 @@
 import ArgumentParser
-import RayTracer
+import FastEngine
+import Measurement
+import SceneIO
+import SceneModel
 
 /// `raytrace bench`: the fixed workloads of the README's performance table.
 struct Bench: ParsableCommand {

@@ -1,4 +1,8 @@
-import RayTracer
+import FastEngine
+import Measurement
+import SceneIO
+import SceneModel
+
 
 /// Writes one line to standard error.
 func printError(_ line: String) {

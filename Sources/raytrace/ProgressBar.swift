@@ -1,4 +1,8 @@
-import RayTracer
+import FastEngine
+import Measurement
+import SceneIO
+import SceneModel
+
 
 /// A progress bar on standard error for renders that take more than about
 /// a second, and only when standard error is a terminal: scripts and

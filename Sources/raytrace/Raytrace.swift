@@ -1,5 +1,8 @@
 import ArgumentParser
-import RayTracer
+import FastEngine
+import Measurement
+import SceneIO
+import SceneModel
 
 @main
 struct Raytrace: ParsableCommand {

@@ -1,5 +1,8 @@
 import ArgumentParser
-import RayTracer
+import FastEngine
+import Measurement
+import SceneIO
+import SceneModel
 
 /// What the command line is checked for before anything is rendered:
 /// outputs by identity, the image's memory, depth ranges.

@@ -1,7 +1,10 @@
 import Dispatch
 import ArgumentParser
 import enum Course.CourseEngine
-import RayTracer
+import FastEngine
+import Measurement
+import SceneIO
+import SceneModel
 
 struct Render: ParsableCommand {
   static let configuration = CommandConfiguration(

@@ -1,5 +1,8 @@
 import ArgumentParser
-import RayTracer
+import FastEngine
+import Measurement
+import SceneIO
+import SceneModel
 
 /// `raytrace report`: error against run time for every precision and method.
 struct Report: ParsableCommand {

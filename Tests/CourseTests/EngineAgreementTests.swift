@@ -1,6 +1,8 @@
 import Course
 import Foundation
-import RayTracer
+import FastEngine
+import SceneIO
+import SceneModel
 import XCTest
 
 /// The course engine against the fast engine, measured rather than forced:

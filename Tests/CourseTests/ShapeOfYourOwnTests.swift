@@ -1,5 +1,5 @@
 import Course
-import RayTracer
+import SceneModel
 import XCTest
 
 
@@ -40,7 +40,7 @@ final class ShapeOfYourOwnTests: XCTestCase {
     let disc = Disc(
       center: .zero, normal: Vector3(0, 0, 1), radius: 2.5, materialIndex: 1)
     let moved = try XCTUnwrap(
-      RayTracer.Transform<Double>(
+      SceneModel.Transform<Double>(
         matrix: .translation(Vector3(2, 2, 1)) * .scale(Vector3(1, 0.3, 1)),
         object: .shape(Shape(disc))))
     return Scene(
@@ -48,8 +48,8 @@ final class ShapeOfYourOwnTests: XCTestCase {
       materials: [
         Material(diffuse: Vector3(1, 1, 1)), Material(diffuse: Vector3(1, 0, 0)),
       ],
-      root: RayTracer.Group([
-        .sphere(RayTracer.Sphere(center: Vector3(1, 0, 2), radius: 1)),
+      root: SceneModel.Group([
+        .sphere(SceneModel.Sphere(center: Vector3(1, 0, 2), radius: 1)),
         .shape(Shape(disc)), .transform(moved),
       ]))
   }

@@ -1,5 +1,7 @@
 import Course
-import RayTracer
+import FastEngine
+import SceneIO
+import SceneModel
 import Foundation
 import XCTest
 

@@ -1,5 +1,5 @@
 import Course
-import RayTracer
+import SceneModel
 import XCTest
 
 

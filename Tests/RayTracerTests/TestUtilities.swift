@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 // Helpers shared by the unit tests: a seedable generator, log-uniform
 // sampling, errors measured in ulps, and reference intersections computed in

@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// What `raytrace bench` reads from its children's output: the render time
 /// and object count of a `--stats` report, and the peer's summary line.

@@ -1,7 +1,10 @@
 import Foundation
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// Runs the built `raytrace` executable, as students and graders do.
 final class CommandLineTests: XCTestCase {

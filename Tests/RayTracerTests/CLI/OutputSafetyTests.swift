@@ -1,7 +1,10 @@
 import Foundation
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// What a run may do to files: outputs all or none, never over the scene
 /// or what it reads, nothing left behind by a signal, names escaped.

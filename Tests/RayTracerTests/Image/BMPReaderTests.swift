@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// The BMP reader on files written here byte by byte: both row orders,
 /// 24- and 32-bit, padding, and every refusal.

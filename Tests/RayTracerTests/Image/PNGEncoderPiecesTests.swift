@@ -1,7 +1,10 @@
 import CZlib
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// The image data compressed in pieces (`PNGEncoder.Pieces`): every cut of
 /// the rows must give the same pixels as one stream, and a zlib stream that

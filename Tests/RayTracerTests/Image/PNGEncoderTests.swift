@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 final class PNGEncoderTests: XCTestCase {
   /// A small image with every kind of row the filters care about: flat,

@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 final class CompensatedTests: XCTestCase {
   /// The exact integer checks use Int128, which macOS has from 15 on.

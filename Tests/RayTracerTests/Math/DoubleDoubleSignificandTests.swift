@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// DoubleDouble's raw significand, a 128-bit unsigned integer, against the
 /// standard library's UInt128 where that exists.

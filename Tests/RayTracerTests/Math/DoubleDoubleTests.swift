@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// DoubleDouble against exact arithmetic and against Float80.
 ///

@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 final class GroupTests: XCTestCase {
   /// Spheres on the −z axis at 10, 20, 30 (radius 1, materials 1, 2, 3)

@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// Rendering a scene with its lengths rescaled by a power of two
 /// (`LengthScale`) changes nothing but the range it works in: t scales

@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// `Surface.specularTerm` leaves `pow` out for shininess 0 and 1 and for a
 /// black specular colour: the colour must be the one the full product

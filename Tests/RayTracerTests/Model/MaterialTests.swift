@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 final class MaterialTests: XCTestCase {
   /// ambient·kd + Σ lights [kd·max(0, n·l) + ks·max(0, −d·r)^s]·light, with

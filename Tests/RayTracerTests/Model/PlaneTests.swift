@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 final class PlaneTests: XCTestCase {
   /// The ground plane y = 0 and the plane y = −1.2 (a negative offset).

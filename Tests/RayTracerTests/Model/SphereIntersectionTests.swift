@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// `SphereIntersection.stableRoot` on spheres behind the ray's origin, and
 /// the flat searches' shortcut for them (`StableKernel.intersect(…memo:)`).

@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// The nearest-texel lookup: u across from the left, v up from the bottom,
 /// 1 on the last texel, outside [0, 1] clamped.

@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// `TriangleIntersection.covers`, the watertight test without its t, and
 /// the bound under which it answers as `intersect` on the whole line does

@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// A mesh file's triangles as one scene entry (`TriangleMesh`): hit,
 /// placed, flattened and scaled exactly as the group of the same triangles.

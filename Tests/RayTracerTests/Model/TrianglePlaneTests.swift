@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// A triangle much larger than its distance from the ray's origin takes t
 /// from its plane (`TrianglePlane`); every other keeps the watertight

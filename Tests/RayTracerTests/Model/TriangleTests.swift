@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 final class TriangleTests: XCTestCase {
   /// The unit right triangle in z = 0, wound counter-clockwise seen from +z,

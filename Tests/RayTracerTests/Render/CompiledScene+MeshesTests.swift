@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// Triangles compiled straight from the meshes' indexed storage
 /// (`CompiledScene.compileTriangles`): each record, material and normal the

@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// The compiled scene (flattened, transforms baked into world space or
 /// carried as ellipsoids, camera-relative, hierarchies, per-tile culling)

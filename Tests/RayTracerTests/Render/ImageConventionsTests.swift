@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// How depth becomes 8-bit levels in each style.
 final class ImageConventionsTests: XCTestCase {

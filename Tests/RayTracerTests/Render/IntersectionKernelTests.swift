@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 final class IntersectionKernelTests: XCTestCase {
   /// The flat searches keep what the stable test computed on its way to t

@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// A render's files encoded in pieces on several threads
 /// (`OutputEncoding`) hold the same images as each encoded on its own.

@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// `ImageStyle.quantize` takes a fast path through Double for Float and
 /// Double; it must agree with truncation (course) and rounding half away

@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// A render handed earlier buffers (`recycling`, as repeated renders are)
 /// writes every value of them: over buffers filled with one value and over

@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// Renders every scene of `scenes/stiff/` at 64×64 in both precisions and
 /// holds the stable method to stated bounds against the reference path (the

@@ -1,7 +1,10 @@
 import Foundation
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// What fuzzing the parser (Fuzz/FuzzSceneParser.swift, run by Fuzz/run.sh)
 /// found, and the limits it relies on: every input parses or fails with one

@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// The two smoothing rules, the course's reading of `a/b` faces and the
 /// mesh's texture coordinates.

@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// An OBJ file read on two threads (`OBJReader.parseInHalves`) gives the
 /// mesh, or the error at its line and column, that one thread gives,

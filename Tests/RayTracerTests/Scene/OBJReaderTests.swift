@@ -1,7 +1,10 @@
 import Foundation
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 final class OBJReaderTests: XCTestCase {
   func parse(_ text: String) throws(SceneError) -> OBJMesh {

@@ -1,7 +1,10 @@
 import Foundation
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// The course's property-list schema: every object and transform against
 /// the same scene in the text format, resources by name, and the errors

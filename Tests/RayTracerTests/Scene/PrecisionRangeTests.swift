@@ -1,7 +1,10 @@
 import Foundation
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// Numbers a render's precision cannot hold are refused where they are
 /// written (`Precision.rangeProblem`), in both scene formats and in OBJ

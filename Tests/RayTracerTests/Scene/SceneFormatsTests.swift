@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// Each project scene is kept in both formats (scenes/NAME.txt and
 /// scenes/NAME.plist, the second written by Scripts/scene-to-plist.py):

@@ -1,7 +1,10 @@
 import Foundation
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 final class SceneParserTests: XCTestCase {
   /// A one-line camera, so that the lines of each test text are easy to

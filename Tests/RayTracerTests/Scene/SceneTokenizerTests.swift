@@ -1,7 +1,10 @@
 import Foundation
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// `plainSphere`, the one-pass reading of spheres, against the token by
 /// token reading it stands in for: the same values to the bit, the same

@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// A mesh file's triangles as the scene keeps them, indexed
 /// (`TriangleMesh(_:materialIndex:normals:)`): the same triangles, bit for

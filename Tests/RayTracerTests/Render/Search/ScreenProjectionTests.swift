@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// `ScreenProjection.cornerExtent`, the short way to the screen extent of
 /// a triangle's corner (a ball far smaller than its distance): every point

@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// Spheres projected onto screen tiles (`ScreenTiles`) against the searches
 /// already shown equal to testing every sphere (the BVH, and culling per

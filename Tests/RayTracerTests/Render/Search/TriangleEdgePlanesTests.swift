@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// `TriangleEdgePlanes`, the screen tiles' first look at a ray: a ray it
 /// excludes must be one the watertight test misses. The rays graze an edge

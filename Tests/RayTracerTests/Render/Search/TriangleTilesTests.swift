@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// Triangles projected onto screen tiles (`ScreenTiles`, `triangleBox`)
 /// against the triangle hierarchy, itself tested against testing every

@@ -1,6 +1,9 @@
 import XCTest
 
-@testable import RayTracer
+@testable import FastEngine
+@testable import Measurement
+@testable import SceneIO
+@testable import SceneModel
 
 /// The wide hierarchy's own guarantees. That it answers exactly as testing
 /// every sphere does is checked with the binary hierarchy's fixtures

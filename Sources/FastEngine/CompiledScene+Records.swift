@@ -1,0 +1,189 @@
+import SceneIO
+import SceneModel
+
+/// A triangle as the loop tests it: vertices in the kernel's frame. Its
+/// shading (material, vertex normals, texture coordinates) is kept beside
+/// the records (`CompiledScene.triangleNormalIndices`), read once per
+/// pixel rather than carried through every test.
+struct TriangleRecord<Scalar: RayScalar>: Sendable {
+  var v0: Vector3<Scalar>
+  var v1: Vector3<Scalar>
+  var v2: Vector3<Scalar>
+
+  init(v0: Vector3<Scalar>, v1: Vector3<Scalar>, v2: Vector3<Scalar>) {
+    self.v0 = v0
+    self.v1 = v1
+    self.v2 = v2
+  }
+
+  /// The winding's unit normal (`Triangle.geometricNormal`); nil for a
+  /// degenerate triangle.
+  var geometricNormal: Vector3<Scalar>? {
+    Triangle(v0, v1, v2).geometricNormal
+  }
+
+  /// The barycentric weights of v0, v1, v2 where `ray` hits (the same
+  /// computation as the hit's, so the same values), or nil on a miss.
+  func barycentrics(
+    of ray: CameraRay<Scalar>
+  ) -> (u: Scalar, v: Scalar, w: Scalar)? {
+    let prepared = WatertightRay(
+      Ray(origin: ray.origin, direction: ray.direction))
+    guard let hit = intersect(prepared, before: .infinity) else { return nil }
+    return (hit.u, hit.v, hit.w)
+  }
+
+  @inline(__always)
+  func intersect(
+    _ ray: WatertightRay<Scalar>, before tMax: Scalar
+  ) -> (t: Scalar, u: Scalar, v: Scalar, w: Scalar)? {
+    TriangleIntersection.intersect(ray, v0, v1, v2, after: 0, before: tMax)
+  }
+
+  /// The t of a triangle much larger than its distance from the eye, for
+  /// the record at `record`, read in place: the watertight test decides
+  /// the hit, the plane gives t (`TrianglePlane`). The plane first, which
+  /// settles most misses (a ground triangle's sky) with one product and a
+  /// division, then the watertight test, by its edges alone where they
+  /// decide it (`LargeTrianglePlane.edgesDecide`). Both must hold, in
+  /// either order, so the answer is the same.
+  @inline(__always)
+  static func t(
+    _ ray: WatertightRay<Scalar>, _ record: UnsafePointer<TriangleRecord>,
+    plane: LargeTrianglePlane<Scalar>, before tMax: Scalar
+  ) -> Scalar? {
+    guard
+      let t = TrianglePlane.t(
+        normal: plane.normal, distance: plane.distance,
+        isAxisAligned: plane.isAxisAligned, direction: ray.direction,
+        after: 0, before: tMax)
+    else { return nil }
+    let (v0, v1, v2) = (
+      record.pointee.v0, record.pointee.v1, record.pointee.v2
+    )
+    let covered =
+      plane.edgesDecide
+      ? TriangleIntersection.covers(ray, v0, v1, v2)
+      : TriangleIntersection.intersect(
+        ray, v0, v1, v2, after: -.infinity, before: .infinity) != nil
+    return covered ? t : nil
+  }
+
+  /// The normal where `ray` hits, from the vertex normals `normals` (nil
+  /// for flat shading): the barycentrics are found again (the same
+  /// computation as the hit's, so the same values).
+  func normal(
+    of ray: CameraRay<Scalar>, normals: Triangle<Scalar>.VertexNormals?
+  ) -> Vector3<Scalar> {
+    // The geometric normal only where it is the answer: found again from
+    // the vertices, it is not stored beside them.
+    guard let normals else { return geometricNormal ?? .zero }
+    let prepared = WatertightRay(
+      Ray(origin: ray.origin, direction: ray.direction))
+    guard let hit = intersect(prepared, before: .infinity) else {
+      return geometricNormal ?? .zero
+    }
+    return normal(
+      weights: TriangleWeights(u: hit.u, v: hit.v, w: hit.w), normals: normals)
+  }
+
+  /// The normal for a hit's barycentric weights (`intersect`'s u, v, w),
+  /// interpolated from the vertex normals `normals`.
+  func normal(
+    weights: TriangleWeights<Scalar>,
+    normals: Triangle<Scalar>.VertexNormals
+  ) -> Vector3<Scalar> {
+    let blended =
+      normals.n0 * weights.u + normals.n1 * weights.v + normals.n2 * weights.w
+    guard blended.maxMagnitude > 0, blended.isFinite else {
+      return geometricNormal ?? .zero
+    }
+    return blended.normalized()
+  }
+}
+
+/// The barycentric weights of v0, v1, v2 at a triangle's hit, as the
+/// watertight test gives them (`TriangleRecord.intersect`): kept by the
+/// screen tiles' search from the test that found the nearest hit, so that
+/// the normal need not run the test again (the same values either way).
+struct TriangleWeights<Scalar: RayScalar>: Sendable {
+  var u: Scalar
+  var v: Scalar
+  var w: Scalar
+}
+
+/// Triangles tested against one prepared ray, for the hierarchy.
+struct TriangleLeaves<Scalar: RayScalar>: LeafPrimitives {
+  let records: UnsafeBufferPointer<TriangleRecord<Scalar>>
+  let ray: WatertightRay<Scalar>
+
+  @inline(__always)
+  func intersect(_ position: Int, before tMax: Scalar) -> Scalar? {
+    records[position].intersect(ray, before: tMax)?.t
+  }
+}
+
+/// A sphere under a non-similarity transform, stored in its own space:
+/// rays are carried there by M⁻¹ (direction not renormalised, so t is the
+/// world t) and the kernel's sphere test runs unchanged.
+struct EllipsoidRecord<Kernel: IntersectionKernel>: Sendable {
+  typealias Scalar = Kernel.Scalar
+  var sphere: Kernel.SphereRecord
+  /// The eye in object space, in the kernel's frame.
+  var origin: Vector3<Scalar>
+  /// The rows of M⁻¹'s linear part.
+  var inverseRows: (Vector3<Scalar>, Vector3<Scalar>, Vector3<Scalar>)
+  var matrix: Matrix4<Scalar>
+
+  @inline(__always)
+  func localRay(_ ray: CameraRay<Scalar>) -> CameraRay<Scalar> {
+    let d = ray.direction
+    return CameraRay(
+      origin: origin,
+      direction: Vector3(
+        inverseRows.0.dot(d), inverseRows.1.dot(d), inverseRows.2.dot(d)))
+  }
+}
+
+/// Per compiled triangle, the indices of its vertex normals in
+/// `CompiledScene.vertexNormals`, or −1s for flat shading.
+struct TriangleNormalIndices: Sendable {
+  var n0: Int32
+  var n1: Int32
+  var n2: Int32
+
+  static var none: TriangleNormalIndices { .init(n0: -1, n1: -1, n2: -1) }
+}
+
+/// What shading reads of a compiled triangle besides its record.
+struct TriangleShading<Scalar: RayScalar>: Sendable {
+  var material: Int32
+  var normals: TriangleNormalIndices
+  /// Only for textured renders.
+  var textureCoordinates: Triangle<Scalar>.TextureCoordinates?
+}
+
+extension CompiledScene {
+  /// Appends a compiled triangle with its material, normals and, for a
+  /// textured render, its texture coordinates.
+  mutating func appendTriangle(
+    _ record: TriangleRecord<Scalar>, _ shading: TriangleShading<Scalar>
+  ) {
+    triangles.append(record)
+    triangleMaterials.append(shading.material)
+    triangleNormalIndices.append(shading.normals)
+    if !textures.isEmpty {
+      triangleTextureCoordinates.append(shading.textureCoordinates)
+    }
+  }
+
+  /// The vertex normals of compiled triangle `index`, or nil.
+  @inline(__always)
+  func vertexNormals(ofTriangle index: Int) -> Triangle<Scalar>.VertexNormals? {
+    let normals = triangleNormalIndices[index]
+    guard normals.n0 >= 0 else { return nil }
+    return Triangle.VertexNormals(
+      vertexNormals[Int(normals.n0)], vertexNormals[Int(normals.n1)],
+      vertexNormals[Int(normals.n2)])
+  }
+}

@@ -1,0 +1,361 @@
+import FastEngine
+import SceneIO
+import SceneModel
+
+/// One fixed workload of `raytrace bench`.
+public struct Workload: Sendable {
+  public enum Source: Sendable {
+    /// A scene file of the project, relative to its root.
+    case file(String)
+    /// `RandomSpheres` with this many spheres, written once to the data
+    /// folder.
+    case randomSpheres(Int)
+    /// `RandomMesh` with this many triangles, written once to the data
+    /// folder.
+    case randomMesh(Int)
+    /// A scene of the MIT assignment, by its file name in the reference
+    /// folder (`Benchmark.referenceFolder`); skipped where that is absent.
+    case reference(String)
+  }
+
+  public var name: String
+  public var source: Source
+  public var width: Int
+  public var height: Int
+  /// Nil: all cores.
+  public var threads: Int?
+  public var outputs: RenderOutputs
+  /// Rays per pixel of the shaded image (`--samples`).
+  public var samples = 1
+
+  /// The workloads of the README's table: the course-like scene at two
+  /// sizes, random spheres from 100 to 10⁶, what leaving outputs out saves,
+  /// and one thread against all.
+  public static let standard: [Workload] = [
+    Workload(
+      name: "course scene", source: .file("scenes/spheres.txt"), width: 800,
+      height: 800, outputs: [.depth, .normals]),
+    Workload(
+      name: "course scene", source: .file("scenes/spheres.txt"), width: 800,
+      height: 800, outputs: [.depth, .normals, .shaded]),
+    Workload(
+      name: "course scene", source: .file("scenes/spheres.txt"), width: 800,
+      height: 800, threads: 1, outputs: [.depth, .normals, .shaded]),
+    Workload(
+      name: "course scene", source: .file("scenes/spheres.txt"), width: 3840,
+      height: 2160, outputs: [.depth, .normals, .shaded]),
+    Workload(
+      name: "random spheres", source: .randomSpheres(100), width: 1920,
+      height: 1080, outputs: [.depth, .normals]),
+    Workload(
+      name: "random spheres", source: .randomSpheres(10_000), width: 1920,
+      height: 1080, outputs: [.depth]),
+    Workload(
+      name: "random spheres", source: .randomSpheres(10_000), width: 1920,
+      height: 1080, outputs: [.depth, .normals]),
+    Workload(
+      name: "random spheres", source: .randomSpheres(10_000), width: 1920,
+      height: 1080, outputs: [.depth, .normals, .shaded]),
+    Workload(
+      name: "random spheres", source: .randomSpheres(10_000), width: 1920,
+      height: 1080, threads: 1, outputs: [.depth, .normals]),
+    Workload(
+      name: "random spheres", source: .randomSpheres(1_000_000), width: 1920,
+      height: 1080, outputs: [.depth, .normals]),
+    Workload(
+      name: "course scene", source: .file("scenes/spheres.txt"), width: 800,
+      height: 800, outputs: [.shaded], samples: 16),
+    Workload(
+      name: "random spheres", source: .randomSpheres(10_000), width: 1920,
+      height: 1080, outputs: [.shaded], samples: 16),
+    Workload(
+      name: "mesh", source: .randomMesh(1_000), width: 1920, height: 1080,
+      outputs: [.depth, .normals]),
+    Workload(
+      name: "mesh", source: .randomMesh(1_000), width: 1920, height: 1080,
+      outputs: [.shaded], samples: 16),
+    Workload(
+      name: "mesh", source: .randomMesh(100_000), width: 1920, height: 1080,
+      outputs: [.depth, .normals]),
+    Workload(
+      name: "mesh", source: .randomMesh(100_000), width: 1920, height: 1080,
+      outputs: [.shaded], samples: 16),
+    Workload(
+      name: "mesh", source: .randomMesh(1_000_000), width: 1920, height: 1080,
+      outputs: [.depth, .normals]),
+    Workload(
+      name: "mesh", source: .randomMesh(1_000_000), width: 1920, height: 1080,
+      outputs: [.shaded], samples: 16),
+    Workload(
+      name: "mesh", source: .randomMesh(5_000_000), width: 1920, height: 1080,
+      outputs: [.depth, .normals]),
+    Workload(
+      name: "bunny_1k", source: .reference("scene06_bunny_1k.txt"),
+      width: 800, height: 800, outputs: [.depth, .normals]),
+    Workload(
+      name: "bunny_1k", source: .reference("scene06_bunny_1k.txt"),
+      width: 800, height: 800, outputs: [.shaded], samples: 16),
+    Workload(
+      name: "arch", source: .reference("scene07_arch.txt"), width: 800,
+      height: 800, outputs: [.depth, .normals]),
+    Workload(
+      name: "arch", source: .reference("scene07_arch.txt"), width: 800,
+      height: 800, outputs: [.shaded], samples: 16),
+  ]
+
+  public init(
+    name: String, source: Source, width: Int, height: Int, threads: Int? = nil,
+    outputs: RenderOutputs, samples: Int = 1
+  ) {
+    self.name = name
+    self.source = source
+    self.width = width
+    self.height = height
+    self.threads = threads
+    self.outputs = outputs
+    self.samples = samples
+  }
+
+  /// The generated scenes' object count; nil for a scene file, whose
+  /// count the run reports (`BenchmarkResult.objects`).
+  public var generatedCount: Int? {
+    switch source {
+    case .file, .reference: nil
+    case .randomSpheres(let count), .randomMesh(let count): count
+    }
+  }
+}
+
+/// One measured row.
+public struct BenchmarkResult: Sendable {
+  public var workload: Workload
+  public var scenePath: String
+  public var threads: Int
+  /// Median render time (the `render:` line of `--stats`) over the runs,
+  /// each the first and only render of its process.
+  public var renderSeconds: Double
+  /// The median of 2 × `runs` renders repeated in one process after its
+  /// first (`--repeat`): a warm render, as peers that time repeated renders
+  /// in one process report it.
+  public var warmRenderSeconds: Double
+  /// Median wall time of the whole process: parse, build, render, write.
+  public var endToEndSeconds: Double
+  /// The largest resident set of any run, in bytes.
+  public var peakBytes: Int
+  /// Spheres, planes, triangles and transformed spheres, as the render
+  /// reported them (`--stats`).
+  public var objects: Int?
+
+  /// Camera rays per second of the warm render, every sample counted.
+  public var megaraysPerSecond: Double {
+    Double(workload.width * workload.height * workload.samples)
+      / warmRenderSeconds / 1e6
+  }
+}
+
+/// Runs workloads as separate processes of the `raytrace` executable, so
+/// that each one's peak memory is its own (`wait4`'s resource usage) and the
+/// end-to-end time is what a user waits for.
+public struct Benchmark {
+  public var executable: String
+  public var dataFolder: String
+  public var runs: Int
+  /// The MIT assignment's scenes (`Workload.Source.reference`).
+  public var referenceFolder: String
+
+  public init(
+    executable: String, dataFolder: String, runs: Int,
+    referenceFolder: String = "../shared/reference/mit"
+  ) {
+    self.executable = executable
+    self.dataFolder = dataFolder
+    self.runs = runs
+    self.referenceFolder = referenceFolder
+  }
+
+  /// Whether `workload`'s scene can be had: a reference scene only where
+  /// the reference folder holds it.
+  public func isAvailable(_ workload: Workload) -> Bool {
+    guard case .reference(let name) = workload.source else { return true }
+    return access("\(referenceFolder)/\(name)", R_OK) == 0
+  }
+
+  public struct Failure: Error, CustomStringConvertible {
+    public var description: String
+  }
+
+  /// The scene file for `workload`, writing a random scene on first use.
+  public func scenePath(for workload: Workload) throws -> String {
+    switch workload.source {
+    case .file(let path):
+      return path
+    case .reference(let name):
+      return "\(referenceFolder)/\(name)"
+    case .randomSpheres(let count):
+      let path = "\(dataFolder)/random-\(count).txt"
+      if access(path, R_OK) != 0 {
+        mkdir(dataFolder, 0o755)
+        do {
+          try AtomicFile.write(
+            Array(RandomSpheres.sceneText(count: count).utf8), to: path)
+        } catch {
+          throw Failure(
+            description: "cannot write the benchmark scene: \(error)")
+        }
+      }
+      return path
+    case .randomMesh(let count):
+      let (name, path) = ("mesh-\(count)", "\(dataFolder)/mesh-\(count).txt")
+      if access(path, R_OK) != 0 {
+        mkdir(dataFolder, 0o755)
+        do {
+          try AtomicFile.write(
+            Array(RandomMesh.objText(count: count).utf8),
+            to: "\(dataFolder)/\(name).obj")
+          try AtomicFile.write(
+            Array(RandomMesh.sceneText(objName: "\(name).obj").utf8), to: path)
+        } catch {
+          throw Failure(
+            description: "cannot write the benchmark scene: \(error)")
+        }
+      }
+      return path
+    }
+  }
+
+  /// One warm-up run (file cache), then `runs` timed ones, then one run
+  /// rendering 2 × `runs` more times after its first for the warm median.
+  public func measure(_ workload: Workload) throws -> BenchmarkResult {
+    let scene = try scenePath(for: workload)
+    let threads = workload.threads ?? Renderer.availableCores
+    var arguments = [
+      scene, "--size", "\(workload.width)", "\(workload.height)",
+      "--threads", "\(threads)", "--stats",
+    ]
+    if workload.samples > 1 {
+      arguments += ["--samples", "\(workload.samples)"]
+    }
+    let outputFolder = dataFolder + "/out"
+    mkdir(dataFolder, 0o755)
+    mkdir(outputFolder, 0o755)
+    if workload.outputs.contains(.depth) {
+      arguments += ["--depth", outputFolder + "/depth.png"]
+    }
+    if workload.outputs.contains(.normals) {
+      arguments += ["--normals", outputFolder + "/normals.png"]
+    }
+    if workload.outputs.contains(.shaded) {
+      arguments += ["-o", outputFolder + "/shaded.png"]
+    }
+    var renderTimes: [Double] = []
+    var wallTimes: [Double] = []
+    var peak = 0
+    for run in 0...runs {
+      let outcome = try Self.spawn(executable, arguments)
+      guard outcome.status == 0 else {
+        throw Failure(
+          description:
+            "\(executable) \(arguments.joined(separator: " ")) failed: "
+            + outcome.stderr
+        )
+      }
+      guard let seconds = Self.renderSeconds(inStats: outcome.stderr) else {
+        throw Failure(
+          description: "no 'render:' line in the output of \(executable)")
+      }
+      peak = max(peak, outcome.peakBytes)
+      if run > 0 {
+        renderTimes.append(seconds)
+        wallTimes.append(outcome.wallSeconds)
+      }
+    }
+    // Twice as many warm renders as timed runs: one process's median is
+    // noisier than a median over processes on this virtual machine.
+    let warm = try Self.spawn(
+      executable, arguments + ["--repeat", "\(2 * runs)"])
+    guard warm.status == 0,
+      let warmSeconds = Self.renderSeconds(inStats: warm.stderr)
+    else {
+      throw Failure(
+        description: "\(executable) --repeat \(2 * runs) failed: \(warm.stderr)"
+      )
+    }
+    return BenchmarkResult(
+      workload: workload, scenePath: scene, threads: threads,
+      renderSeconds: median(renderTimes), warmRenderSeconds: warmSeconds,
+      endToEndSeconds: median(wallTimes), peakBytes: peak,
+      objects: Self.objectCount(inStats: warm.stderr))
+  }
+
+  /// The sum of the counts in a `scene: PATH: 6 spheres, 1 planes, 0
+  /// triangles, 0 transformed spheres; …` line.
+  static func objectCount(inStats text: String) -> Int? {
+    guard
+      let line = text.split(separator: "\n").first(where: {
+        $0.hasPrefix("scene: ")
+      }),
+      let counts = line.split(separator: ";").first?.split(separator: ":")
+        .last
+    else { return nil }
+    var total = 0
+    for part in counts.split(separator: ",") {
+      guard let number = part.split(separator: " ").first.flatMap({ Int($0) })
+      else { return nil }
+      total += number
+    }
+    return total
+  }
+
+  /// The seconds of a `render: 0.1234 s, 45.6 Mrays/s` line.
+  static func renderSeconds(inStats text: String) -> Double? {
+    for line in text.split(separator: "\n") where line.hasPrefix("render: ") {
+      let value = line.dropFirst("render: ".count).prefix { $0 != " " }
+      return Double(value)
+    }
+    return nil
+  }
+
+  struct Outcome {
+    var status: Int32
+    var stderr: String
+    var wallSeconds: Double
+    var peakBytes: Int
+  }
+
+  /// Runs a child with standard error captured, and its resource usage.
+  static func spawn(_ executable: String, _ arguments: [String]) throws
+    -> Outcome
+  {
+    guard let pipe = Platform.makePipe() else {
+      throw Failure(description: "pipe failed")
+    }
+    var clock = Stopwatch()
+    let spawned = Platform.spawn(executable, arguments, errorPipe: pipe)
+    close(pipe.write)
+    guard case .success(let child) = spawned else {
+      close(pipe.read)
+      if case .failure(let error) = spawned {
+        throw Failure(
+          description: "cannot start \(executable): "
+            + String(cString: strerror(error.code)))
+      }
+      throw Failure(description: "cannot start \(executable)")
+    }
+    var captured: [UInt8] = []
+    var buffer = [UInt8](repeating: 0, count: 4096)
+    while true {
+      let count = read(pipe.read, &buffer, buffer.count)
+      if count <= 0 { break }
+      captured += buffer[0..<count]
+    }
+    close(pipe.read)
+    var usage = rusage()
+    var exit: Int32 = 0
+    while wait4(child, &exit, 0, &usage) < 0 && errno == EINTR {}
+    let wall = clock.lap()
+    return Outcome(
+      status: (exit & 0x7F) == 0 ? (exit >> 8) & 0xFF : 128 + (exit & 0x7F),
+      stderr: String(decoding: captured, as: UTF8.self), wallSeconds: wall,
+      peakBytes: Platform.peakBytes(usage))
+  }
+}

@@ -1,0 +1,99 @@
+import RealModule
+import FastEngine
+import SceneIO
+import SceneModel
+
+/// Per-pixel error in false colour, with a legend, for `raytrace report
+/// --heatmaps`.
+///
+/// Colour is log10 of the relative error of t in units of the render's ε:
+/// ≤ 1 ε dark blue, through green and yellow, to ≥ 10^8 ε white-hot red.
+/// Pixels where both missed are black; where one hit and the other missed,
+/// magenta. Below the image a 24-pixel strip shows the scale with a tick and
+/// the exponent (0 to 8) at each decade.
+public enum ErrorHeatmap {
+  public static let decades = 8
+  static let legendHeight = 24
+  static let magenta: (UInt8, UInt8, UInt8) = (255, 0, 255)
+
+  public static func image(
+    _ measurement: AccuracyMeasurement, width: Int, height: Int, epsilon: Double
+  ) -> Image8 {
+    let totalHeight = height + legendHeight
+    var bytes = [UInt8](repeating: 0, count: width * totalHeight * 3)
+    func put(_ column: Int, _ row: Int, _ colour: (UInt8, UInt8, UInt8)) {
+      let index = 3 * (row * width + column)
+      bytes[index] = colour.0
+      bytes[index + 1] = colour.1
+      bytes[index + 2] = colour.2
+    }
+    for row in 0..<height {
+      for column in 0..<width {
+        let error = measurement.perPixel[row * width + column]
+        if error.isNaN { continue }
+        if error.isInfinite {
+          put(column, row, magenta)
+          continue
+        }
+        put(column, row, colour(forUlps: error / epsilon))
+      }
+    }
+    // The colour bar, 10 pixels high, then ticks and digits.
+    for column in 0..<width {
+      let fraction = Double(column) / Double(Swift.max(width - 1, 1))
+      let ulps = Double.pow(10, fraction * Double(decades))
+      for row in (height + 2)..<(height + 12) {
+        put(column, row, colour(forUlps: ulps))
+      }
+    }
+    for decade in 0...decades {
+      let column = Swift.min(width - 1, decade * (width - 1) / decades)
+      for row in (height + 12)..<(height + 15) {
+        put(column, row, (255, 255, 255))
+      }
+      let left = Swift.min(Swift.max(column - 1, 0), width - 3)
+      drawDigit(decade, atColumn: left, row: height + 16) {
+        put($0, $1, (255, 255, 255))
+      }
+    }
+    return Image8(width: width, height: totalHeight, bytes: bytes)
+  }
+
+  /// A perceptually ordered ramp (dark blue, cyan, green, yellow, red,
+  /// white) over 0 to `decades` decades of ulps.
+  static func colour(forUlps ulps: Double) -> (UInt8, UInt8, UInt8) {
+    let stops: [(Double, Double, Double)] = [
+      (0.05, 0.05, 0.35), (0.0, 0.55, 0.85), (0.1, 0.75, 0.3),
+      (0.95, 0.85, 0.1), (0.9, 0.15, 0.1), (1, 1, 1),
+    ]
+    let position = ulps > 1 ? Double.log(ulps) / Double.log(10) : 0
+    let scaled =
+      Swift.min(Swift.max(position / Double(decades), 0), 1)
+      * Double(stops.count - 1)
+    let index = Swift.min(Int(scaled), stops.count - 2)
+    let f = scaled - Double(index)
+    let a = stops[index]
+    let b = stops[index + 1]
+    func channel(_ x: Double, _ y: Double) -> UInt8 {
+      UInt8((x + (y - x) * f) * 255)
+    }
+    return (channel(a.0, b.0), channel(a.1, b.1), channel(a.2, b.2))
+  }
+
+  /// 3×5 pixel digits: rows top to bottom, three bits each, left bit first.
+  static let glyphs: [[UInt8]] = [
+    [7, 5, 5, 5, 7], [2, 6, 2, 2, 7], [7, 1, 7, 4, 7], [7, 1, 7, 1, 7],
+    [5, 5, 7, 1, 1], [7, 4, 7, 1, 7], [7, 4, 7, 5, 7], [7, 1, 2, 2, 2],
+    [7, 5, 7, 5, 7], [7, 5, 7, 1, 7],
+  ]
+
+  static func drawDigit(
+    _ digit: Int, atColumn column: Int, row: Int, _ put: (Int, Int) -> Void
+  ) {
+    for (dy, bits) in glyphs[digit].enumerated() {
+      for dx in 0..<3 where bits & (4 >> dx) != 0 {
+        put(column + dx, row + dy)
+      }
+    }
+  }
+}

@@ -1,0 +1,206 @@
+import SceneModel
+
+/// The files one run writes, replaced all together or not at all.
+///
+/// Made before rendering: each target is checked (not a folder, its folder
+/// writable) by creating its temporary file beside it, which then exists,
+/// empty, for the whole render; a terminating signal removes it. `commit`
+/// writes every temporary in full, then for each target keeps a hard link
+/// to the old file (if any) and renames the temporary over it. If a rename
+/// fails part way, the targets already replaced are put back from their
+/// links (or removed, if they were new), and the error names the file that
+/// failed. A signal that arrives during the renames does the same from
+/// its handler (`PendingFiles`). What remains: POSIX renames one file at a
+/// time, so another process can see some targets replaced and others not
+/// for the microseconds between the renames, and a crash of the machine in
+/// that window can leave a mixed set.
+public final class OutputBatch {
+  /// The system calls a batch makes to replace its targets, replaceable in
+  /// tests to make one fail.
+  public struct FileOperations: Sendable {
+    public var rename: @Sendable (String, String) -> Int32
+    public var link: @Sendable (String, String) -> Int32
+
+    public static let system = FileOperations(
+      rename: { Platform.renameFile($0, $1) },
+      link: { Platform.linkFile($0, $1) })
+
+    public init(
+      rename: @escaping @Sendable (String, String) -> Int32,
+      link: @escaping @Sendable (String, String) -> Int32
+    ) {
+      self.rename = rename
+      self.link = link
+    }
+  }
+
+  public let paths: [String]
+  private var temporaries: [String] = []
+  private var descriptors: [Int32] = []
+  private let operations: FileOperations
+  private var finished = false
+
+  /// Creates the temporary file of every path.
+  ///
+  /// - Throws: `OutputError` naming the first path that cannot be written
+  ///   (a folder, a missing or read-only folder, too many outputs), after
+  ///   removing the temporaries already made.
+  public init(
+    paths: [String], operations: FileOperations = .system
+  ) throws(OutputError) {
+    PendingFiles.installHandlers()
+    self.paths = paths
+    self.operations = operations
+    for path in paths {
+      var status = stat()
+      if stat(path, &status) == 0 && (status.st_mode & S_IFMT) == S_IFDIR {
+        abandon()
+        throw OutputError(path: path, reason: "it is a directory")
+      }
+      let temporary = Self.temporaryPath(for: path)
+      guard PendingFiles.add(.remove, temporary) else {
+        abandon()
+        throw OutputError(path: path, reason: "too many outputs at once")
+      }
+      let descriptor = open(temporary, O_WRONLY | O_CREAT | O_EXCL, 0o644)
+      guard descriptor >= 0 else {
+        let reason = Self.systemReason()
+        PendingFiles.remove(temporary)
+        abandon()
+        throw OutputError(path: path, reason: reason)
+      }
+      temporaries.append(temporary)
+      descriptors.append(descriptor)
+    }
+  }
+
+  deinit { abandon() }
+
+  /// Removes every temporary; the targets are left as they were.
+  public func abandon() {
+    guard !finished else { return }
+    finished = true
+    for (temporary, descriptor) in zip(temporaries, descriptors) {
+      close(descriptor)
+      unlink(temporary)
+      PendingFiles.remove(temporary)
+    }
+  }
+
+  /// Writes `contents[i]` to `paths[i]` for every i, all or none.
+  public func commit(_ contents: [[UInt8]]) throws(OutputError) {
+    precondition(contents.count == paths.count && !finished)
+    for index in paths.indices {
+      do throws(OutputError) {
+        try Self.writeWhole(
+          contents[index], to: descriptors[index], reportingAs: paths[index])
+      } catch {
+        abandon()
+        throw error
+      }
+    }
+    for descriptor in descriptors { close(descriptor) }
+    descriptors = []
+    // Old targets kept aside (hard links), so that a failure part way can
+    // put them back.
+    var replaced: [Replacement] = []
+    defer { forget(replaced) }
+    for (index, target) in paths.enumerated() {
+      let entry = keepAside(target)
+      replaced.append(entry)
+      guard operations.rename(temporaries[index], target) == 0 else {
+        let reason = Self.systemReason()
+        undo(replaced.dropLast(), from: index)
+        throw OutputError(path: target, reason: reason)
+      }
+      PendingFiles.remove(temporaries[index])
+    }
+    finished = true
+  }
+
+  /// A target about to be replaced: a hard link to its old file, or
+  /// whether there was none.
+  private struct Replacement {
+    var target: String
+    var backup: String?
+    var existed: Bool
+  }
+
+  /// Links the target's old file aside and records how a signal handler
+  /// would undo its replacement. A file system without hard links (FAT,
+  /// exFAT) leaves no backup: that one target cannot be put back.
+  private func keepAside(_ target: String) -> Replacement {
+    let backup = Self.temporaryPath(for: target)
+    if operations.link(target, backup) == 0 {
+      if PendingFiles.add(.restore, backup, target) {
+        return Replacement(target: target, backup: backup, existed: true)
+      }
+      unlink(backup)
+    }
+    let existed = access(target, F_OK) == 0
+    if !existed { _ = PendingFiles.add(.remove, target) }
+    return Replacement(target: target, backup: nil, existed: existed)
+  }
+
+  /// Drops the backups once they are no longer needed.
+  private func forget(_ replaced: [Replacement]) {
+    for entry in replaced {
+      if let backup = entry.backup {
+        PendingFiles.remove(backup)
+        unlink(backup)
+      } else if !entry.existed {
+        PendingFiles.remove(entry.target)
+      }
+    }
+  }
+
+  /// Puts back every target in `replaced` and removes the temporaries from
+  /// `index` on.
+  private func undo(_ replaced: ArraySlice<Replacement>, from index: Int) {
+    for entry in replaced {
+      if let backup = entry.backup {
+        _ = operations.rename(backup, entry.target)
+      } else if !entry.existed {
+        unlink(entry.target)
+      }
+    }
+    for temporary in temporaries[index...] {
+      unlink(temporary)
+      PendingFiles.remove(temporary)
+    }
+    finished = true
+  }
+
+  private static func writeWhole(
+    _ bytes: [UInt8], to descriptor: Int32, reportingAs path: String
+  ) throws(OutputError) {
+    var written = 0
+    while written < bytes.count {
+      let result = bytes.withUnsafeBytes { buffer -> Int in
+        guard let base = buffer.baseAddress else { return 0 }
+        return Platform.writeBytes(
+          descriptor, base + written, buffer.count - written)
+      }
+      if result < 0 {
+        if errno == EINTR { continue }
+        throw OutputError(path: path, reason: systemReason())
+      }
+      written += result
+    }
+  }
+
+  /// `.rt-PID-N.tmp` in the target's folder: within one file system for
+  /// the rename, and short enough for any name the folder accepts.
+  static func temporaryPath(for path: String) -> String {
+    let slash = path.lastIndex(of: "/")
+    let folder = slash.map { String(path[...$0]) } ?? ""
+    let number = counter.add(1).old
+    return "\(folder).rt-\(getpid())-\(number).tmp"
+  }
+
+  private static let counter = AtomicCounter(0)
+
+  static func systemReason() -> String {
+    String(cString: strerror(errno))
+  }
+}

@@ -1,0 +1,55 @@
+import SceneModel
+
+/// Turns an OBJ file into a scene object, as both scene formats name it
+/// (`TriangleMesh { obj_file PATH }` in text, `objFile NAME` in a plist).
+///
+/// Normals: a file with `vn` lines uses them; otherwise the mesh is
+/// smoothed by the style's rule (`MeshNormals`). A face written `a/b` in a
+/// file with both `vt` and `vn` lines reads b as a texture coordinate for a
+/// textured material and as a normal otherwise, as the course's loader
+/// does.
+enum MeshLoader {
+  /// A mesh as the scene holds it.
+  struct Loaded {
+    /// A group of the mesh's triangles.
+    var object: SceneObject<Double>
+    /// Whether any face gives texture coordinates.
+    var hasTextureCoordinates: Bool
+  }
+
+  enum Failure: Error {
+    /// A problem inside the OBJ file, at its own line and column.
+    case inFile(SceneError)
+    /// A problem the scene reports where it names the mesh.
+    case atReference(String)
+  }
+
+  static func load(
+    _ path: String, materialIndex: Int, textured: Bool, normals: MeshNormals,
+    precision: Precision = .double
+  ) throws(Failure) -> Loaded {
+    var mesh: OBJMesh
+    do {
+      mesh = try OBJReader.read(contentsOf: path, precision: precision)
+    } catch {
+      guard error.line == 0 else { throw .inFile(error) }
+      throw .atReference(
+        "cannot read '\(SceneParser.escaped(path))': \(error.message)")
+    }
+    if !textured {
+      guard let reread = mesh.readingTextureIndicesAsNormals() else {
+        throw .atReference(
+          "'\(SceneParser.escaped(path))' has faces a/b whose b, read as a "
+            + "normal for a material without a texture, is not a vn index")
+      }
+      mesh = reread
+    }
+    // The scene's one entry for the file, indexed as the file is
+    // (`TriangleMesh`).
+    let hasTextureCoordinates = mesh.hasTextureCoordinates
+    let triangles = TriangleMesh(
+      consume mesh, materialIndex: materialIndex, normals: normals)
+    return Loaded(
+      object: .mesh(triangles), hasTextureCoordinates: hasTextureCoordinates)
+  }
+}

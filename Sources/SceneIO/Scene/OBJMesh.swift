@@ -1,0 +1,306 @@
+import SceneModel
+
+/// A triangulated OBJ mesh, in the file's Double precision.
+///
+/// The faces are kept as the scene keeps them (`TriangleMesh`): three
+/// Int32 indices a triangle per attribute, 12 bytes where a triangle of
+/// `OBJTriangle`s took 48, and the scene's mesh shares them rather than
+/// copying them. `triangles` gives them as `OBJTriangle`s.
+public struct OBJMesh: Sendable {
+  /// The `v` lines in order; x, y and z only.
+  public var vertices: [Vector3<Double>]
+  /// The `vn` lines in order, as written (not normalised; may be zero).
+  public var normals: [Vector3<Double>]
+  /// The `vt` lines in order, (u, v); a missing v is 0, w is dropped.
+  public var textureCoordinates: [TextureCoordinate<Double>]
+  /// Three per triangle, into `vertices`: the faces, fanned into
+  /// triangles, in file order.
+  public private(set) var vertexIndices: [Int32] = []
+  /// Three per triangle into `normals`, −1s for a face without; empty
+  /// until some face gives normals.
+  public private(set) var normalIndices: [Int32] = []
+  /// Three per triangle into `textureCoordinates`, −1s for a face without;
+  /// empty until some face gives texture coordinates.
+  public private(set) var textureIndices: [Int32] = []
+
+  public init(
+    vertices: [Vector3<Double>] = [], normals: [Vector3<Double>] = [],
+    textureCoordinates: [TextureCoordinate<Double>] = [],
+    triangles: [OBJTriangle] = []
+  ) {
+    self.vertices = vertices
+    self.normals = normals
+    self.textureCoordinates = textureCoordinates
+    self.triangles = triangles
+  }
+
+  /// The count of triangles.
+  public var triangleCount: Int { vertexIndices.count / 3 }
+
+  /// The faces, fanned into triangles, in file order, one value each (made
+  /// on each read: for tests and small meshes).
+  public var triangles: [OBJTriangle] {
+    get { (0..<triangleCount).map(face) }
+    set {
+      vertexIndices = []
+      normalIndices = []
+      textureIndices = []
+      for face in newValue { append(face) }
+    }
+  }
+
+  /// Triangle `index` as an `OBJTriangle`.
+  public func face(_ index: Int) -> OBJTriangle {
+    func triple(_ indices: [Int32]) -> SIMD3<Int32>? {
+      guard !indices.isEmpty, indices[3 * index] >= 0 else { return nil }
+      return SIMD3(
+        indices[3 * index], indices[3 * index + 1], indices[3 * index + 2])
+    }
+    return OBJTriangle(
+      vertexIndices: triple(vertexIndices) ?? SIMD3(repeating: -1),
+      normalIndices: triple(normalIndices),
+      textureIndices: triple(textureIndices))
+  }
+
+  /// Appends a triangle.
+  mutating func append(_ face: OBJTriangle) {
+    append(
+      vertices: face.vertexIndices, normals: face.normalIndices,
+      texture: face.textureIndices)
+  }
+
+  /// Appends a triangle: its vertex indices and, when its face gave them,
+  /// its normal and texture-coordinate indices.
+  @inline(__always)
+  mutating func append(
+    vertices v: SIMD3<Int32>, normals n: SIMD3<Int32>?,
+    texture t: SIMD3<Int32>?
+  ) {
+    let previous = vertexIndices.count
+    vertexIndices.append(v.x)
+    vertexIndices.append(v.y)
+    vertexIndices.append(v.z)
+    Self.append(n, to: &normalIndices, previous: previous)
+    Self.append(t, to: &textureIndices, previous: previous)
+  }
+
+  /// Appends `triple`, or −1s, to `indices`, which hold `previous` entries
+  /// or none at all while no face gave any.
+  @inline(__always)
+  private static func append(
+    _ triple: SIMD3<Int32>?, to indices: inout [Int32], previous: Int
+  ) {
+    if let triple {
+      if indices.isEmpty && previous > 0 {
+        indices = Array(repeating: -1, count: previous)
+      }
+      indices.append(triple.x)
+      indices.append(triple.y)
+      indices.append(triple.z)
+    } else if !indices.isEmpty {
+      indices.append(-1)
+      indices.append(-1)
+      indices.append(-1)
+    }
+  }
+
+  /// Appends `other`'s elements after this mesh's, and its faces, whose
+  /// indices already count this mesh's elements (the second half of a
+  /// file, `OBJReader.parseInHalves`).
+  mutating func append(contentsOf other: OBJMesh) {
+    let (previous, added) = (vertexIndices.count, other.vertexIndices.count)
+    vertices += other.vertices
+    normals += other.normals
+    textureCoordinates += other.textureCoordinates
+    vertexIndices += other.vertexIndices
+    func merge(_ indices: inout [Int32], _ others: [Int32]) {
+      guard !indices.isEmpty || !others.isEmpty else { return }
+      if indices.isEmpty { indices = Array(repeating: -1, count: previous) }
+      if others.isEmpty {
+        indices += repeatElement(-1, count: added)
+      } else {
+        indices += others
+      }
+    }
+    merge(&normalIndices, other.normalIndices)
+    merge(&textureIndices, other.textureIndices)
+  }
+
+  /// Drops the index entries past `counts` (vertex, normal, texture).
+  mutating func truncateIndices(to counts: (Int, Int, Int)) {
+    vertexIndices.removeLast(vertexIndices.count - counts.0)
+    normalIndices.removeLast(normalIndices.count - counts.1)
+    textureIndices.removeLast(textureIndices.count - counts.2)
+  }
+
+  /// Whether any face gives texture coordinates.
+  public var hasTextureCoordinates: Bool {
+    stride(from: 0, to: textureIndices.count, by: 3).contains {
+      textureIndices[$0] >= 0
+    }
+  }
+
+  /// The mesh with a normal per vertex where it has none (no `vn` lines),
+  /// by the style's rule (see `MeshNormals`); vertices are taken by index,
+  /// coincident positions are not merged. Faces whose cross product is zero
+  /// or not finite add nothing; a vertex whose sum is zero gets the zero
+  /// normal, for which a hit falls back to the face's own normal.
+  public func smoothed(_ rule: MeshNormals = .unitMean) -> OBJMesh {
+    guard let normals = smoothedNormals(rule) else { return self }
+    var result = self
+    result.normals = normals
+    result.normalIndices = vertexIndices
+    return result
+  }
+
+  /// The normal per vertex of `smoothed`, or nil when `smoothed` leaves
+  /// the mesh as it is (it has `vn` lines, or no faces).
+  func smoothedNormals(_ rule: MeshNormals) -> [Vector3<Double>]? {
+    guard normals.isEmpty, !vertexIndices.isEmpty else { return nil }
+    var sums = [Vector3<Double>](repeating: .zero, count: vertices.count)
+    for first in stride(from: 0, to: vertexIndices.count, by: 3) {
+      let (a, b, c) = (
+        Int(vertexIndices[first]), Int(vertexIndices[first + 1]),
+        Int(vertexIndices[first + 2])
+      )
+      let cross = (vertices[b] - vertices[a]).cross(vertices[c] - vertices[a])
+      guard cross.maxMagnitude > 0, cross.isFinite else { continue }
+      let weighted = rule == .unitMean ? cross.normalized() : cross
+      sums[a] += weighted
+      sums[b] += weighted
+      sums[c] += weighted
+    }
+    // In place: a second array of a normal per vertex would be fresh
+    // memory, whose page faults cost more than the arithmetic.
+    for index in sums.indices {
+      let sum = sums[index]
+      sums[index] =
+        sum.maxMagnitude > 0 && sum.isFinite ? sum.normalized() : .zero
+    }
+    return sums
+  }
+
+  /// The course loader's reading of `a/b` faces in a file that has both
+  /// `vt` and `vn` lines, for a material without a texture: b is a normal
+  /// index. Faces that give normals already are unchanged.
+  ///
+  /// - Returns: nil when some such b is not a valid normal index.
+  public func readingTextureIndicesAsNormals() -> OBJMesh? {
+    guard !normals.isEmpty, !textureIndices.isEmpty else { return self }
+    var result = self
+    let limit = Int32(truncatingIfNeeded: normals.count)
+    for first in stride(from: 0, to: textureIndices.count, by: 3) {
+      guard normalIndices.isEmpty || normalIndices[first] < 0,
+        textureIndices[first] >= 0
+      else { continue }
+      let second = (
+        textureIndices[first], textureIndices[first + 1],
+        textureIndices[first + 2]
+      )
+      guard Swift.max(second.0, second.1, second.2) < limit else {
+        return nil
+      }
+      if result.normalIndices.isEmpty {
+        result.normalIndices = Array(repeating: -1, count: vertexIndices.count)
+      }
+      result.normalIndices[first] = second.0
+      result.normalIndices[first + 1] = second.1
+      result.normalIndices[first + 2] = second.2
+      result.textureIndices[first] = -1
+      result.textureIndices[first + 1] = -1
+      result.textureIndices[first + 2] = -1
+    }
+    return result
+  }
+
+  /// The mesh as model triangles in precision S, with vertex normals and
+  /// texture coordinates where the face gave them. Degenerate triangles (a
+  /// repeated vertex, a zero-area face) are kept: they are never hit, and
+  /// dropping them is the compiled scene's choice.
+  public func makeTriangles<S: RayScalar>(
+    materialIndex: Int, as _: S.Type = S.self
+  ) -> [Triangle<S>] {
+    (0..<triangleCount).map {
+      triangle(at: $0, materialIndex: materialIndex, as: S.self)
+    }
+  }
+
+  /// The model triangle of `triangles[index]`, as `makeTriangles` makes
+  /// it, for callers that store each one straight into their own array.
+  ///
+  /// - Precondition: `0 <= index < triangleCount`.
+  public func triangle<S: RayScalar>(
+    at index: Int, materialIndex: Int, as _: S.Type = S.self
+  ) -> Triangle<S> {
+    let face = face(index)
+    let v = face.vertexIndices
+    let normals = face.normalIndices.map { n in
+      Triangle<S>.VertexNormals(
+        Vector3<S>(self.normals[Int(n.x)]),
+        Vector3<S>(self.normals[Int(n.y)]),
+        Vector3<S>(self.normals[Int(n.z)]))
+    }
+    let coordinates = face.textureIndices.map { t in
+      Triangle<S>.TextureCoordinates(
+        TextureCoordinate<S>(textureCoordinates[Int(t.x)]),
+        TextureCoordinate<S>(textureCoordinates[Int(t.y)]),
+        TextureCoordinate<S>(textureCoordinates[Int(t.z)]))
+    }
+    return Triangle<S>(
+      Vector3<S>(vertices[Int(v.x)]), Vector3<S>(vertices[Int(v.y)]),
+      Vector3<S>(vertices[Int(v.z)]), vertexNormals: normals,
+      textureCoordinates: coordinates, materialIndex: materialIndex)
+  }
+}
+
+/// One triangle of an OBJ mesh: 0-based indices into `OBJMesh.vertices`
+/// and, when its face gave them, into `OBJMesh.normals` and
+/// `OBJMesh.textureCoordinates`.
+public struct OBJTriangle: Hashable, Sendable {
+  public var vertexIndices: SIMD3<Int32>
+  /// −1s when the face gave no normals; read through `normalIndices`.
+  @usableFromInline var normalStorage: SIMD3<Int32>
+  /// −1s when the face gave no texture coordinates.
+  @usableFromInline var textureStorage: SIMD3<Int32>
+
+  public init(
+    vertexIndices: SIMD3<Int32>, normalIndices: SIMD3<Int32>? = nil,
+    textureIndices: SIMD3<Int32>? = nil
+  ) {
+    self.vertexIndices = vertexIndices
+    normalStorage = normalIndices ?? SIMD3(repeating: -1)
+    textureStorage = textureIndices ?? SIMD3(repeating: -1)
+  }
+
+  /// Indices into `OBJMesh.normals`, or nil for a face without normals.
+  @inlinable
+  public var normalIndices: SIMD3<Int32>? {
+    get { normalStorage.x < 0 ? nil : normalStorage }
+    set { normalStorage = newValue ?? SIMD3(repeating: -1) }
+  }
+
+  /// Indices into `OBJMesh.textureCoordinates`, or nil.
+  @inlinable
+  public var textureIndices: SIMD3<Int32>? {
+    get { textureStorage.x < 0 ? nil : textureStorage }
+    set { textureStorage = newValue ?? SIMD3(repeating: -1) }
+  }
+}
+
+extension OBJMesh: Hashable {
+  /// The same elements and the same faces, however the indices are held
+  /// (−1s or none for faces without normals).
+  public static func == (lhs: OBJMesh, rhs: OBJMesh) -> Bool {
+    lhs.vertices == rhs.vertices && lhs.normals == rhs.normals
+      && lhs.textureCoordinates == rhs.textureCoordinates
+      && lhs.vertexIndices == rhs.vertexIndices
+      && lhs.triangles == rhs.triangles
+  }
+
+  public func hash(into hasher: inout Hasher) {
+    hasher.combine(vertices)
+    hasher.combine(normals)
+    hasher.combine(textureCoordinates)
+    hasher.combine(vertexIndices)
+  }
+}

@@ -1,0 +1,38 @@
+import SceneModel
+
+/// What reading a scene depends on beyond its file: the image style's
+/// reading of meshes, and the precision the scene will be rendered in.
+public struct SceneOptions: Hashable, Sendable {
+  /// How a mesh without `vn` lines gets its vertex normals.
+  public var meshNormals: MeshNormals
+  /// The render's precision: every number of the scene (and of its
+  /// meshes), and every Transform's matrix, must be finite, and zero or
+  /// normal, in it; the readers refuse the first that is not, where it is
+  /// written (see `Precision.rangeProblem`). Double by default, which
+  /// refuses only what Double cannot hold either.
+  public var precision: Precision
+
+  public init(meshNormals: MeshNormals, precision: Precision = .double) {
+    self.meshNormals = meshNormals
+    self.precision = precision
+  }
+
+  /// The reading each image style's images were made with.
+  public init(style: ImageStyle, precision: Precision = .double) {
+    switch style {
+    case .course: meshNormals = .areaWeighted
+    case .mit: meshNormals = .unitMean
+    }
+    self.precision = precision
+  }
+}
+
+/// The vertex normals of a smoothed mesh (one without `vn` lines).
+public enum MeshNormals: String, Hashable, Sendable {
+  /// The course's loader: the sum of the unnormalised face cross products
+  /// around the vertex, normalised, so large faces weigh more.
+  case areaWeighted
+  /// The original assignment's images: the mean of the unit normals of the
+  /// faces around the vertex, normalised.
+  case unitMean
+}

@@ -1,0 +1,22 @@
+import SceneModel
+
+/// A mesh file's triangles as the scene keeps them (`TriangleMesh`).
+extension TriangleMesh<Double> {
+  /// The mesh of `obj`, every triangle of material `materialIndex`, the
+  /// same triangles as `obj.smoothed(normals).makeTriangles(…)` in the same
+  /// order: where the file has no `vn` lines, a normal per vertex by the
+  /// rule (`OBJMesh.smoothed`), indexed by the vertex indices themselves.
+  init(_ obj: consuming OBJMesh, materialIndex: Int, normals rule: MeshNormals)
+  {
+    // The file's index arrays themselves, shared: no copy.
+    let smoothed = obj.smoothedNormals(rule)
+    self.init(
+      vertices: obj.vertices, normals: smoothed ?? obj.normals,
+      textureCoordinates: obj.textureCoordinates,
+      vertexIndices: obj.vertexIndices,
+      normalIndices: smoothed == nil ? obj.normalIndices : [],
+      normalsFollowVertices: smoothed != nil,
+      textureIndices: obj.textureIndices,
+      materialIndex: materialIndex)
+  }
+}

@@ -1,0 +1,78 @@
+/// Where a supersampled pixel's rays go: `settings.samples` jittered,
+/// stratified screen points through the pixel filter's support, the same
+/// for both engines. An iterator over the samples' unit directions,
+/// stratum by stratum, row-major:
+///
+///     var samples = PixelSamples(column: c, row: r, camera: camera,
+///                                settings: settings)
+///     while let direction = samples.next() { … }
+///
+/// The jitter comes from a generator seeded by the pixel's index, so the
+/// image is the same for any thread count and either engine.
+public struct PixelSamples<R: RayScalar>: IteratorProtocol {
+  private let camera: PerspectiveCamera<R>
+  private let filter: PixelFilter
+  private let aspect: R
+  private let centre: (x: R, y: R)
+  /// One pixel in screen units: the distance between adjacent samples of
+  /// the style's grid.
+  private let step: (x: R, y: R)
+  /// √samples strata on each axis.
+  let strata: Int
+  private var generator: SplitMix64
+  private var stratum = 0
+
+  @inline(__always)
+  public init(
+    column: Int, row: Int, camera: PerspectiveCamera<R>,
+    settings: RenderSettings
+  ) {
+    let (width, height) = (settings.width, settings.height)
+    let style = settings.style
+    self.camera = camera
+    filter = settings.filter
+    aspect = R(height) / R(width)
+    centre = (
+      style.screenX(column: column, width: width),
+      style.screenY(row: row, height: height)
+    )
+    step = (
+      width > 1
+        ? style.screenX(column: 1, width: width)
+          - style.screenX(column: 0, width: width) : 2,
+      height > 1
+        ? style.screenY(row: 0, height: height)
+          - style.screenY(row: 1, height: height) : 2
+    )
+    strata = Int(Double(settings.samples).squareRoot())
+    generator = SplitMix64(
+      seed: UInt64(row * width + column) &* 0x9E37_79B9_7F4A_7C15)
+  }
+
+  /// The number of samples: the largest square ≤ `settings.samples`.
+  public var count: Int { strata * strata }
+
+  @inline(__always)
+  public mutating func next() -> Vector3<R>? {
+    nextThroughScreen()?.normalizedByReciprocal()
+  }
+
+  /// The next sample's direction before it is normalised: `next()` is it
+  /// normalised by reciprocal (`PerspectiveCamera.throughScreen`).
+  @inline(__always)
+  public mutating func nextThroughScreen() -> Vector3<R>? {
+    guard stratum < count else { return nil }
+    let (stratumY, stratumX) = stratum.quotientAndRemainder(dividingBy: strata)
+    stratum += 1
+    let u =
+      (Double(stratumX) + Double.random(in: 0..<1, using: &generator))
+      / Double(strata)
+    let v =
+      (Double(stratumY) + Double.random(in: 0..<1, using: &generator))
+      / Double(strata)
+    let x = centre.x + R(filter.offset(u)) * step.x
+    let y = centre.y - R(filter.offset(v)) * step.y
+    return camera.throughScreen(
+      x: x, rowBase: camera.rowBase(y: y, aspect: aspect))
+  }
+}
