@@ -23,7 +23,7 @@ done
 
 render() {
   local label=$1; shift
-  "$binary" "$@" -o "$out/s.ppm" --depth "$out/d.pfm" \
+  "$binary" "$@" --engine fast -o "$out/s.ppm" --depth "$out/d.pfm" \
     --normals "$out/n.pfm" 2>/dev/null || { echo "failed  $label"; return; }
   echo "$(cat "$out/s.ppm" "$out/d.pfm" "$out/n.pfm" | sha256sum | cut -c1-16)  $label"
 }

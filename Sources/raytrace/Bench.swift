@@ -8,8 +8,11 @@ import SceneModel
 struct Bench: ParsableCommand {
   static let configuration = CommandConfiguration(
     commandName: "bench",
-    abstract: "Time the fixed benchmark workloads and print a Markdown table.",
+    abstract:
+      "Time the fast engine on fixed workloads and print a Markdown table.",
     discussion: """
+      Every workload is rendered by the fast engine (--engine fast), the \
+      engine the timings are about. \
       Each workload runs as its own raytrace process: one warm-up, then \
       --runs timed runs, then one run that renders twice --runs more times \
       (--repeat). 'render, warm' is the median of those repeated renders \
@@ -19,8 +22,9 @@ struct Bench: ParsableCommand {
       'end to end' the median wall time of the timed runs (parse, build, \
       render, write PNGs); 'peak memory' their largest resident set. The \
       random sphere and mesh scenes are written to --data on first use; the \
-      MIT assignment's bunny and arch are read from --reference, and left \
-      out where it is missing; run from the project's root. With --peer, \
+      MIT assignment's bunny and arch are read from --reference (the \
+      assignment's scene folder, with its models/), and left out without \
+      it; run from the project's root. With --peer, \
       each workload is also rendered by Mitsuba 3 through the course tools' \
       peer_mitsuba.py (as it is and with --freeze, the better kept; depth \
       and normals at pixel centres, or --spp jittered samples), and its warm \
@@ -39,7 +43,7 @@ struct Bench: ParsableCommand {
     help: ArgumentHelp(
       "Folder of the MIT assignment's scenes (bunny, arch).",
       valueName: "dir"))
-  var reference: String = "../shared/reference/mit"
+  var reference: String?
 
   @Option(
     help: ArgumentHelp(
@@ -131,7 +135,9 @@ struct Bench: ParsableCommand {
     }
     if !missing.isEmpty {
       print(
-        "\nLeft out (no \(reference)): "
+        "\nLeft out ("
+          + (reference.map { "not in \($0)" } ?? "no --reference folder")
+          + "): "
           + missing.sorted().joined(separator: ", "))
     }
     // The issue's scaling goal, read off the rows above.

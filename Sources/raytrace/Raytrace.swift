@@ -9,8 +9,22 @@ struct Raytrace: ParsableCommand {
   static let configuration = CommandConfiguration(
     commandName: "raytrace",
     abstract:
-      "Ray-cast a scene of spheres and planes into shaded, depth and normal "
-      + "images.",
+      "Ray-cast a scene into shaded, depth and normal images.",
+    discussion: """
+      To render a scene (the render command is the default):
+        raytrace SCENE -o out.png [--depth depth.png] [--normals normals.png]
+        raytrace -input SCENE -size W H -output out.png   (the assignment's)
+
+      A scene is a file in the course's text format or a property list of \
+      the Swift course (XML or binary), told apart by content. Its objects: \
+      Sphere, Plane, Triangle, TriangleMesh (an OBJ file, optionally \
+      textured), Group, and Transform (translate, scale, rotate, matrix) \
+      around any of them; a PerspectiveCamera, point and directional \
+      lights, Phong materials.
+
+      The default engine is the course's code (Sources/Course); \
+      --engine fast renders the same scene with the fast engine.
+      """,
     subcommands: [Render.self, Report.self, Bench.self],
     defaultSubcommand: Render.self)
 

@@ -22,7 +22,8 @@ struct Render: ParsableCommand {
                  [-depth MIN MAX FILE]
       """)
 
-  @Argument(help: "The scene file, in the course's text format.")
+  @Argument(
+    help: "The scene file: the course's text format or a property list.")
   var scene: String?
 
   @Option(

@@ -10,11 +10,12 @@ struct Report: ParsableCommand {
     commandName: "report",
     abstract:
       """
-        Measure each precision and intersection method against a \
-        high-precision reference.
+        Measure the fast engine's precisions and intersection methods \
+        against a high-precision reference.
         """,
     discussion: """
-      Renders every scene with float and double, naive and stable, times each \
+      Renders every scene with the fast engine (the one with a choice of \
+      precision and method) in float and double, naive and stable, times each \
       (the fastest of --rounds medians of --runs renders after a warm-up, \
       naive and stable in alternation, and stable's time over naive's in the \
       same precision), compares depth and normals \

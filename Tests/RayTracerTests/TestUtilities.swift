@@ -301,3 +301,17 @@ enum ProjectFiles {
     return paths
   }
 }
+
+// MARK: - Long cases
+
+extension XCTestCase {
+  /// Skips a case that takes seconds (exhaustive sweeps, every stiff scene
+  /// against the double-double reference) unless RAYTRACE_LONG_TESTS is
+  /// set, so that `swift test` stays within a minute on two cores; `.ci/run`
+  /// sets it, so CI runs every case.
+  func skipUnlessLongTests() throws {
+    try XCTSkipUnless(
+      ProcessInfo.processInfo.environment["RAYTRACE_LONG_TESTS"] != nil,
+      "a long case: RAYTRACE_LONG_TESTS=1 swift test runs it")
+  }
+}

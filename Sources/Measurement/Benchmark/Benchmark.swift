@@ -160,12 +160,13 @@ public struct Benchmark {
   public var executable: String
   public var dataFolder: String
   public var runs: Int
-  /// The MIT assignment's scenes (`Workload.Source.reference`).
-  public var referenceFolder: String
+  /// The MIT assignment's scenes, for the bunny and arch workloads; nil
+  /// leaves them out.
+  public var referenceFolder: String?
 
   public init(
     executable: String, dataFolder: String, runs: Int,
-    referenceFolder: String = "../shared/reference/mit"
+    referenceFolder: String? = nil
   ) {
     self.executable = executable
     self.dataFolder = dataFolder
@@ -177,6 +178,7 @@ public struct Benchmark {
   /// the reference folder holds it.
   public func isAvailable(_ workload: Workload) -> Bool {
     guard case .reference(let name) = workload.source else { return true }
+    guard let referenceFolder else { return false }
     return access("\(referenceFolder)/\(name)", R_OK) == 0
   }
 
@@ -190,7 +192,7 @@ public struct Benchmark {
     case .file(let path):
       return path
     case .reference(let name):
-      return "\(referenceFolder)/\(name)"
+      return "\(referenceFolder ?? ".")/\(name)"
     case .randomSpheres(let count):
       let path = "\(dataFolder)/random-\(count).txt"
       if access(path, R_OK) != 0 {
@@ -230,7 +232,7 @@ public struct Benchmark {
     let threads = workload.threads ?? Renderer.availableCores
     var arguments = [
       scene, "--size", "\(workload.width)", "\(workload.height)",
-      "--threads", "\(threads)", "--stats",
+      "--threads", "\(threads)", "--stats", "--engine", "fast",
     ]
     if workload.samples > 1 {
       arguments += ["--samples", "\(workload.samples)"]

@@ -157,6 +157,7 @@ final class ScreenTilesTests: XCTestCase {
 
   /// The stiff suite's tiny far spheres, planets, grazing and inside views.
   func testStiffScenes_SameImages() throws {
+    try skipUnlessLongTests()
     for name in StiffSuiteTests.scenes {
       let scene = try SceneParser.parse(
         contentsOf: "\(StiffSuiteTests.stiffFolder)/\(name).txt")
@@ -260,15 +261,18 @@ final class ScreenTilesTests: XCTestCase {
     }
   }
 
-  func testBoxes_HoldEveryHit_StableDouble() {
+  func testBoxes_HoldEveryHit_StableDouble() throws {
+    try skipUnlessLongTests()
     checkBoxesHoldEveryHit(StableKernel<Double>.self, base: 0xB01)
   }
 
-  func testBoxes_HoldEveryHit_StableFloat() {
+  func testBoxes_HoldEveryHit_StableFloat() throws {
+    try skipUnlessLongTests()
     checkBoxesHoldEveryHit(StableKernel<Float>.self, base: 0xB02)
   }
 
-  func testBoxes_HoldEveryHit_NaiveFloat() {
+  func testBoxes_HoldEveryHit_NaiveFloat() throws {
+    try skipUnlessLongTests()
     checkBoxesHoldEveryHit(NaiveKernel<Float>.self, base: 0xB03)
   }
 

@@ -11,10 +11,7 @@ import XCTest
 /// transforms intersected as the scene file nests them), pixel by pixel.
 final class CompiledSceneTests: XCTestCase {
   static var scenesFolder: String {
-    var parts = "\(#filePath)".split(
-      separator: "/", omittingEmptySubsequences: false)
-    parts.removeLast(4)
-    return parts.joined(separator: "/") + "/scenes"
+    return ProjectFiles.projectFolder + "/scenes"
   }
 
   /// The compiled scene's depth and normals are the model's, bit for bit:

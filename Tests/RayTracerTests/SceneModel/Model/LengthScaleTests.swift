@@ -272,6 +272,7 @@ final class LengthScaleTests: XCTestCase {
   /// misses agree with the reference path on every pixel (measured: 0
   /// lost, 0 disagreements).
   func testIcosphere_WatertightFrom1eMinus20To1e20() throws {
+    try skipUnlessLongTests()
     for precision in Precision.allCases {
       for exponent in stride(from: -20, through: 20, by: 5) {
         let s = Double("1e\(exponent)") ?? 1

@@ -23,6 +23,7 @@ final class PNGEncoderPiecesTests: XCTestCase {
   }
 
   func testEveryCutOfTheRowsDecodesToTheImage() throws {
+    try skipUnlessLongTests()
     try checkEveryCut(width: 17, levels: [-1, 0, 1, 6, 9])
   }
 

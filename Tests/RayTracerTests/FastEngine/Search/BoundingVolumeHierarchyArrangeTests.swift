@@ -63,7 +63,8 @@ final class BoundingVolumeHierarchyArrangeTests: XCTestCase {
   /// records arranged in place into leaf order), gives the nearest hit of
   /// testing every triangle in the original order: the same t and the same
   /// triangle, ties to the first.
-  func testArrangedTriangles_NearestMatchesBruteForce() {
+  func testArrangedTriangles_NearestMatchesBruteForce() throws {
+    try skipUnlessLongTests()
     for seed: UInt64 in [0x7121, 0x7122, 0x7123] {
       var generator = SplitMix64(seed: seed)
       var records: [TriangleRecord<Double>] = []

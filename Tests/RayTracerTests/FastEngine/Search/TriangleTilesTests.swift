@@ -300,13 +300,16 @@ final class TriangleTilesTests: XCTestCase {
     }
   }
 
-  func testBoxesHoldEveryHit_StableDouble() {
+  func testBoxesHoldEveryHit_StableDouble() throws {
+    try skipUnlessLongTests()
     checkBoxesHoldEveryHit(StableKernel<Double>.self, base: 0x7B1)
   }
-  func testBoxesHoldEveryHit_NaiveFloat() {
+  func testBoxesHoldEveryHit_NaiveFloat() throws {
+    try skipUnlessLongTests()
     checkBoxesHoldEveryHit(NaiveKernel<Float>.self, base: 0x7B2)
   }
-  func testBoxesHoldEveryHit_StableFloat() {
+  func testBoxesHoldEveryHit_StableFloat() throws {
+    try skipUnlessLongTests()
     checkBoxesHoldEveryHit(StableKernel<Float>.self, base: 0x7B3)
   }
 }

@@ -48,11 +48,7 @@ final class StiffSuiteTests: XCTestCase {
   static let size = 64
 
   static var stiffFolder: String {
-    // Tests/RayTracerTests/Report/StiffSuiteTests.swift → the package root.
-    var parts = "\(#filePath)".split(
-      separator: "/", omittingEmptySubsequences: false)
-    parts.removeLast(4)
-    return parts.joined(separator: "/") + "/scenes/stiff"
+    return ProjectFiles.projectFolder + "/scenes/stiff"
   }
 
   static let scenes =
@@ -136,9 +132,11 @@ final class StiffSuiteTests: XCTestCase {
   /// The same bounds against the DoubleDouble reference, which is
   /// ReferenceScalar where there is no Float80 (on x86 both run).
   func testStable_EveryStiffScene_Float_AgainstDoubleDouble() throws {
+    try skipUnlessLongTests()
     try checkStable(.float, against: DoubleDouble.self)
   }
   func testStable_EveryStiffScene_Double_AgainstDoubleDouble() throws {
+    try skipUnlessLongTests()
     try checkStable(.double, against: DoubleDouble.self)
   }
 
@@ -158,6 +156,7 @@ final class StiffSuiteTests: XCTestCase {
     /// Double. Measured 4.6·10⁻¹⁰° (far-sphere-1e8), 7·10⁻¹⁴° or less
     /// where L/r ≤ 10⁴.
     func testReference_DoubleDoubleAgreesWithFloat80() throws {
+    try skipUnlessLongTests()
       var worstT = 0.0
       var worstTScene = ""
       var worstNormal = 0.0

@@ -16,10 +16,7 @@ final class FuzzRegressionTests: XCTestCase {
   static let sphere = SceneParserTests.sphere
 
   static var packageRoot: String {
-    var parts = "\(#filePath)".split(
-      separator: "/", omittingEmptySubsequences: false)
-    parts.removeLast(4)
-    return parts.joined(separator: "/")
+    return ProjectFiles.projectFolder
   }
 
   /// The fuzzer's committed seed corpus of scenes.
