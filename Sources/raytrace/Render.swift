@@ -1,6 +1,7 @@
 import Dispatch
 import ArgumentParser
 import enum Course.CourseEngine
+import enum Course.CourseShapes
 import FastEngine
 import Measurement
 import SceneIO
@@ -329,7 +330,8 @@ struct Render: ParsableCommand {
       scene = try SceneReader.read(
         contentsOf: plan.scenePath,
         options: SceneOptions(
-          style: plan.settings.style, precision: plan.settings.precision))
+          style: plan.settings.style, precision: plan.settings.precision,
+          shapes: CourseShapes.all))
     } catch {
       printError(error.description)
       throw ExitCode.failure

@@ -1,4 +1,5 @@
 import ArgumentParser
+import enum Course.CourseShapes
 import FastEngine
 import Measurement
 import SceneIO
@@ -137,7 +138,8 @@ struct Report: ParsableCommand {
         // suite's double-only scenes) has no row in it: the renderer
         // refuses it.
         if precision != .double {
-          let options = SceneOptions(style: .course, precision: precision)
+          let options = SceneOptions(
+            style: .course, precision: precision, shapes: CourseShapes.all)
           guard
             (try? SceneParser.parse(contentsOf: path, options: options))
               != nil

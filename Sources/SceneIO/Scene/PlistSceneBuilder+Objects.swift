@@ -33,7 +33,15 @@ extension PlistSceneBuilder {
     forced: Int? = nil
   ) throws(SceneError) -> SceneObject<Double> {
     let fields = try dictionary(value, path)
-    let type = try checkType(fields, Self.objectTypes, path, required: true)
+    if case .string(let name)? = fields["type"],
+      let kind = options.shapes.first(where: { $0.name == name })
+    {
+      return try shape(
+        kind, fields, path, material: own(fields, path, forced, inherited))
+    }
+    let type = try checkType(
+      fields, Self.objectTypes + options.shapes.map(\.name), path,
+      required: true)
     let own = try materialIndex(fields, path)
     let material = forced ?? own ?? inherited ?? 0
     switch type {
@@ -225,5 +233,35 @@ extension PlistSceneBuilder {
           + "(no face gives vt)")
     }
     return loaded.object
+  }
+
+  /// The material of the object at `path`, as `object` chooses it.
+  func own(
+    _ fields: [String: PropertyList], _ path: String, _ forced: Int?,
+    _ inherited: Int?
+  ) throws(SceneError) -> Int {
+    if let forced { return forced }
+    let own = try materialIndex(fields, path)
+    return own ?? inherited ?? 0
+  }
+
+  /// A dictionary of `type` NAME for a kind of object the caller added
+  /// (`SceneOptions.shapes`): each field a string of its numbers.
+  func shape(
+    _ kind: ShapeKind, _ fields: [String: PropertyList], _ path: String,
+    material: Int
+  ) throws(SceneError) -> SceneObject<Double> {
+    try checkKeys(
+      fields, ["type", "materialIndex"] + kind.fields.map(\.name), path)
+    var values: [String: [Double]] = [:]
+    for field in kind.fields {
+      let value = try required(fields[field.name], field.name, path)
+      values[field.name] = try numbers(
+        value, count: field.count, "\(path).\(field.name)")
+    }
+    switch kind.make(values, material) {
+    case .success(let shape): return .shape(Shape(shape))
+    case .failure(let problem): throw fail(path, problem.message)
+    }
   }
 }

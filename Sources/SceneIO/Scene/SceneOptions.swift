@@ -2,7 +2,7 @@ import SceneModel
 
 /// What reading a scene depends on beyond its file: the image style's
 /// reading of meshes, and the precision the scene will be rendered in.
-public struct SceneOptions: Hashable, Sendable {
+public struct SceneOptions: Sendable {
   /// How a mesh without `vn` lines gets its vertex normals.
   public var meshNormals: MeshNormals
   /// The render's precision: every number of the scene (and of its
@@ -11,19 +11,30 @@ public struct SceneOptions: Hashable, Sendable {
   /// written (see `Precision.rangeProblem`). Double by default, which
   /// refuses only what Double cannot hold either.
   public var precision: Precision
+  /// Kinds of object beyond the readers' own, read by name (the course's
+  /// `CourseShapes.all`, passed in by the command line).
+  public var shapes: [ShapeKind] = []
 
-  public init(meshNormals: MeshNormals, precision: Precision = .double) {
+  public init(
+    meshNormals: MeshNormals, precision: Precision = .double,
+    shapes: [ShapeKind] = []
+  ) {
     self.meshNormals = meshNormals
     self.precision = precision
+    self.shapes = shapes
   }
 
   /// The reading each image style's images were made with.
-  public init(style: ImageStyle, precision: Precision = .double) {
+  public init(
+    style: ImageStyle, precision: Precision = .double,
+    shapes: [ShapeKind] = []
+  ) {
     switch style {
     case .course: meshNormals = .areaWeighted
     case .mit: meshNormals = .unitMean
     }
     self.precision = precision
+    self.shapes = shapes
   }
 }
 
