@@ -1,8 +1,8 @@
 /// How this build of the library was compiled, as far as its behaviour
 /// depends on it.
 public enum BuildConfiguration {
-  /// Whether `assert` is checked: true in debug builds, which optimise the
-  /// library but keep its assertions (`-assert-config Debug`, see
+  /// Whether `assert` is checked: true in debug builds, which build the
+  /// library unoptimised and keep its assertions (see
   /// Package.swift), false in release builds.
   public static let checksAssertions: Bool = {
     var checked = false

@@ -6,7 +6,7 @@ import XCTest
 @testable import SceneModel
 
 final class BuildConfigurationTests: XCTestCase {
-  /// Debug builds optimise the library (Package.swift) but must keep its
+  /// Debug builds (Package.swift) must keep the library's
   /// assertions, which the tests rely on; release builds drop them.
   func testAssertions_CheckedExactlyInDebugBuilds() {
     #if DEBUG
