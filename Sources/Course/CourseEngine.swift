@@ -53,7 +53,7 @@ public enum CourseEngine {
 
 /// What every pixel needs: the camera, the course's objects, the lights and
 /// materials.
-private struct View: Sendable {
+struct View: Sendable {
   let scene: Scene
   let camera: PerspectiveCamera<Double>
   let world: Group

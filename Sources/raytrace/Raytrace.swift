@@ -25,7 +25,7 @@ struct Raytrace: ParsableCommand {
       The default engine is the course's code (Sources/Course); \
       --engine fast renders the same scene with the fast engine.
       """,
-    subcommands: [Render.self, Report.self, Bench.self],
+    subcommands: [Render.self, Compare.self, Report.self, Bench.self],
     defaultSubcommand: Render.self)
 
   /// Whether the commands' `validate()` checks nothing: the first of the

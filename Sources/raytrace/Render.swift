@@ -174,6 +174,18 @@ struct Render: ParsableCommand {
   )
   var stats = false
 
+  @Flag(
+    help:
+      """
+        Render with the course engine and with the fast engine, and report \
+        per output (all three when none is given) how far they differ, and \
+        what each engine hit at the first pixel where they do. The outputs \
+        given are written from the course engine. Exit status 1 when an \
+        output differs on more than 0.1 % of its pixels.
+        """
+  )
+  var check = false
+
   // Unconditional: a negative count reaches validate() and its message.
   @Option(
     name: .customLong("repeat"), parsing: .unconditional,
@@ -261,9 +273,13 @@ struct Render: ParsableCommand {
       }
       files.append(file)
     }
-    guard !files.isEmpty else {
+    guard !files.isEmpty || check else {
       throw ValidationError(
         "Nothing to render: give at least one of -o, --depth or --normals.")
+    }
+    if check, engine != nil {
+      throw ValidationError(
+        "--check renders with both engines: drop --engine.")
     }
     try Self.checkDistinct(files, scenePath: scenePath)
     try checkMemory(width: width, height: height, outputs: files.map(\.kind))
@@ -302,7 +318,7 @@ struct Render: ParsableCommand {
         "--engine course solves the sphere's quadratic one way (stable); "
           + "drop --intersection naive or use --engine fast.")
     case let engine?: settings.engine = engine
-    case nil: settings.engine = fastOnly ? .fast : .course
+    case nil: settings.engine = fastOnly && !check ? .fast : .course
     }
     guard (0...1000).contains(repeats) else {
       throw ValidationError(
@@ -347,6 +363,18 @@ struct Render: ParsableCommand {
       throw ExitCode.failure
     }
     try checkOutputs(plan.files, against: scene)
+    if check {
+      if !plan.files.isEmpty { try render(scene, plan, parseSeconds: 0) }
+      try checkEngines(scene, plan)
+      return
+    }
+    try render(scene, plan, parseSeconds: parseSeconds)
+  }
+
+  /// Writes the plan's files from the chosen engine.
+  private func render(_ scene: Scene, _ plan: Plan, parseSeconds: Double)
+    throws
+  {
     do {
       for file in plan.files {
         try AtomicFile.checkWritable(file.path)

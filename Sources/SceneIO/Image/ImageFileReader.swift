@@ -46,6 +46,15 @@ public enum ImageFileReader {
   /// The largest side accepted, as for the render's own images.
   public static let maximumSide = 1 << 15
 
+  /// The image in the file at `path` (a regular file, read whole).
+  public static func read(contentsOf path: String) throws(Failure)
+    -> ReadImage
+  {
+    let bytes: [UInt8]
+    do { bytes = try readFile(path) } catch { throw Failure(error.reason) }
+    return try read(bytes)
+  }
+
   public static func read(_ bytes: [UInt8]) throws(Failure) -> ReadImage {
     func starts(with prefix: [UInt8]) -> Bool {
       bytes.count >= prefix.count && Array(bytes.prefix(prefix.count)) == prefix
@@ -171,11 +180,11 @@ public enum ImageFileReader {
     guard bytes.count >= data else { throw Failure("its header ends early") }
     let header = String(
       decoding: bytes[(8 + lengthBytes)..<data], as: UTF8.self)
-    let size: Int
+    let bytesPerValue: Int
     if header.contains("'<f4'") {
-      size = 4
+      bytesPerValue = 4
     } else if header.contains("'<f8'") {
-      size = 8
+      bytesPerValue = 8
     } else {
       throw Failure("its values are not little-endian '<f4' or '<f8'")
     }
@@ -197,18 +206,20 @@ public enum ImageFileReader {
     let (width, height) = try size(
       String(dimensions[1] ?? 0), String(dimensions[0] ?? 0))
     let count = width * height * channels
-    guard bytes.count - data >= size * count else {
+    guard bytes.count - data >= bytesPerValue * count else {
       throw Failure(
-        "it holds \(bytes.count - data) bytes of values, not \(size * count)")
+        "it holds \(bytes.count - data) bytes of values, not "
+          + "\(bytesPerValue * count)")
     }
     var values = [Double](repeating: 0, count: count)
     for index in 0..<count {
       var bits: UInt64 = 0
-      for byte in 0..<size {
-        bits |= UInt64(bytes[data + size * index + byte]) << (8 * UInt64(byte))
+      for byte in 0..<bytesPerValue {
+        let offset = data + bytesPerValue * index + byte
+        bits |= UInt64(bytes[offset]) << (8 * UInt64(byte))
       }
       values[index] =
-        size == 4
+        bytesPerValue == 4
         ? Double(Float(bitPattern: UInt32(truncatingIfNeeded: bits)))
         : Double(bitPattern: bits)
     }

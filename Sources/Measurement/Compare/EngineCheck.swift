@@ -1,0 +1,182 @@
+import SceneIO
+import SceneModel
+
+/// The course engine's images against the fast engine's, output by output,
+/// and what each engine hit at the first pixel where they differ
+/// (`raytrace SCENE --check`).
+public struct EngineCheck {
+  /// What one engine hit along a pixel's ray: the object's index in the
+  /// scene's group and its kind, t and the normal; nil for a miss.
+  public struct Found {
+    public var index: Int
+    public var kind: String
+    public var materialIndex: Int
+    public var t: Double
+    public var normal: Vector3<Double>
+
+    public init(
+      index: Int, kind: String, materialIndex: Int, t: Double,
+      normal: Vector3<Double>
+    ) {
+      self.index = index
+      self.kind = kind
+      self.materialIndex = materialIndex
+      self.t = t
+      self.normal = normal
+    }
+  }
+
+  /// One output's comparison, and its first differing pixel's report.
+  public struct Output {
+    public var name: String
+    public var comparison: ImageComparison
+    public var pixel: [String]
+  }
+
+  public var outputs: [Output] = []
+
+  /// Compares the `outputs` (8-bit, as the style draws them; depth over
+  /// `depthRange`, or the course engine's own range) of the two renders,
+  /// whose buffers hold depth, normals and colour.
+  ///
+  /// - Parameter probe: the ray of a pixel and the course engine's hit
+  ///   there, object by object (`CourseEngine.probe`).
+  public init(
+    scene: Scene, course: RenderBuffers<Double>, fast: RenderBuffers<Double>,
+    style: ImageStyle, outputs requested: RenderOutputs,
+    depthRange: ClosedRange<Double>?, tolerance: Double,
+    probe: (Int, Int) -> (ray: Ray<Double>, hits: [(index: Int, hit: Hit<Double>)])
+  ) {
+    let range = style.depthRange(course.depth, given: depthRange)
+    var images: [(String, Image8, Image8)] = []
+    if requested.contains(.shaded) {
+      images.append(("shaded", style.colorImage(course), style.colorImage(fast)))
+    }
+    if requested.contains(.normals) {
+      images.append(
+        ("normals", style.normalImage(course), style.normalImage(fast)))
+    }
+    if requested.contains(.depth) {
+      images.append(
+        (
+          "depth", style.depthImage(course, range: range),
+          style.depthImage(fast, range: range)
+        ))
+    }
+    for (name, a, b) in images {
+      let comparison = ImageComparison(
+        ReadImage(a), ReadImage(b), tolerance: tolerance)
+      var lines: [String] = []
+      if let (column, row) = comparison.first {
+        let index = row * course.width + column
+        let (ray, hits) = probe(column, row)
+        let courseFound = Self.nearest(hits, scene: scene)
+        let fastFound = Self.fastFound(
+          scene, ray: ray, t: fast.depth[index], normal: fast.normals[index])
+        lines = Self.describe(
+          column: column, row: row, ray: ray, course: courseFound,
+          fast: fastFound)
+      }
+      outputs.append(Output(name: name, comparison: comparison, pixel: lines))
+    }
+  }
+
+  /// The nearest of the course engine's hits, object by object.
+  static func nearest(
+    _ hits: [(index: Int, hit: Hit<Double>)], scene: Scene
+  ) -> Found? {
+    guard let best = hits.min(by: { $0.hit.t < $1.hit.t }) else { return nil }
+    return Found(
+      index: best.index, kind: kind(of: scene.root.objects[best.index]),
+      materialIndex: best.hit.materialIndex, t: best.hit.t,
+      normal: best.hit.normal)
+  }
+
+  /// The object the fast engine hit at depth `t`: of the scene's objects,
+  /// the one whose own hit (the scene model's, the fast engine's numerics)
+  /// is nearest `t`; t and the normal are the fast engine's own.
+  static func fastFound(
+    _ scene: Scene, ray: Ray<Double>, t: Double, normal: Vector3<Double>
+  ) -> Found? {
+    guard t.isFinite else { return nil }
+    var best: (index: Int, distance: Double, material: Int)?
+    for (index, object) in scene.root.objects.enumerated() {
+      guard let hit = object.intersect(ray, after: 0, before: .infinity)
+      else { continue }
+      let distance = abs(hit.t - t)
+      if distance < (best?.distance ?? .infinity) {
+        best = (index, distance, hit.materialIndex)
+      }
+    }
+    guard let best else { return nil }
+    return Found(
+      index: best.index, kind: kind(of: scene.root.objects[best.index]),
+      materialIndex: best.material, t: t, normal: normal)
+  }
+
+  static func kind(of object: SceneObject<Double>) -> String {
+    switch object {
+    case .sphere: "Sphere"
+    case .plane: "Plane"
+    case .triangle: "Triangle"
+    case .mesh: "TriangleMesh"
+    case .group: "Group"
+    case .transform: "Transform"
+    case .shape: "a shape of its own"
+    }
+  }
+
+  /// The pixel, its ray, what each engine hit, and what differs.
+  static func describe(
+    column: Int, row: Int, ray: Ray<Double>, course: Found?, fast: Found?
+  ) -> [String] {
+    func line(_ found: Found?) -> String {
+      guard let found else { return "nothing (a miss)" }
+      return "object \(found.index) of the group (\(found.kind), material "
+        + "\(found.materialIndex)) at t = \(found.t), normal \(found.normal)"
+    }
+    var lines = [
+      "first difference at column \(column), row \(row): the ray from "
+        + "\(ray.origin) in direction \(ray.direction)",
+      "  course engine hit \(line(course))",
+      "  fast engine hit   \(line(fast))",
+    ]
+    lines.append("  so: " + verdict(course, fast))
+    return lines
+  }
+
+  /// What the two hits say about the course's code.
+  static func verdict(_ course: Found?, _ fast: Found?) -> String {
+    switch (course, fast) {
+    case (nil, nil):
+      return "both miss: the difference is in the background or the image"
+    case (nil, let fast?):
+      return "the course engine misses object \(fast.index) (\(fast.kind)), "
+        + "which the fast engine hits: check its intersect"
+    case (let course?, nil):
+      return "the course engine hits object \(course.index) (\(course.kind)) "
+        + "where the fast engine sees nothing: check its intersect"
+    case (let course?, let fast?):
+      if course.index != fast.index {
+        return "they hit different objects (\(course.index) and "
+          + "\(fast.index)): the nearest t is not kept, or a t is wrong"
+      }
+      let relative = abs(course.t - fast.t) / max(abs(fast.t), 1e-300)
+      if relative > 1e-6 {
+        return "the same object, but t differs by \(Float(relative)) "
+          + "relative: check the intersection's formula (a sign, a root)"
+      }
+      let length = course.normal.length
+      if abs(length - 1) > 1e-6 {
+        return "the same object and t, but the course's normal has length "
+          + "\(Float(length)), not 1: normalise it"
+      }
+      if course.normal.dot(fast.normal) < 0.999 {
+        return "the same object and t, but the normals differ: check the "
+          + "normal's direction (outward, and its transform)"
+      }
+      return "the same object, t and normal: the difference is in the "
+        + "shading or in where the pixel is drawn"
+    }
+  }
+}
