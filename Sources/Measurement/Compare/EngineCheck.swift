@@ -149,7 +149,9 @@ public struct EngineCheck {
   static func verdict(_ course: Found?, _ fast: Found?) -> String {
     switch (course, fast) {
     case (nil, nil):
-      return "both miss: the difference is in the background or the image"
+      return "both engines' rays miss here, yet the pixels differ: the "
+        + "course engine drew this pixel from another ray or another "
+        + "background (see the pattern)"
     case (nil, let fast?):
       return "the course engine misses object \(fast.index) (\(fast.kind)), "
         + "which the fast engine hits: check its intersect"

@@ -262,21 +262,23 @@ public struct ImageComparison: Sendable {
       }
       return false
     }
-    func onEdge(_ column: Int, _ row: Int) -> Bool {
+    func onEdge(_ image: ReadImage, _ column: Int, _ row: Int) -> Bool {
       for (dx, dy) in [(1, 0), (-1, 0), (0, 1), (0, -1)] {
         let (c, r) = (column + dx, row + dy)
         guard c >= 0, r >= 0, c < width, r < height else { continue }
-        if jump(a, (column, row), (c, r)) || jump(b, (column, row), (c, r)) {
-          return true
-        }
+        if jump(image, (column, row), (c, r)) { return true }
       }
       return false
     }
-    var edges = 0
+    // A pixel at a silhouette is at an edge of both images (an object's
+    // rim seen a pixel apart); noise in one image is at "edges" of that
+    // image only.
+    var edges = (a: 0, b: 0)
     var (lowColumn, highColumn, lowRow, highRow) = (width, -1, height, -1)
     for row in 0..<height {
       for column in 0..<width where differing[row * width + column] {
-        if onEdge(column, row) { edges += 1 }
+        if onEdge(a, column, row) { edges.a += 1 }
+        if onEdge(b, column, row) { edges.b += 1 }
         lowColumn = min(lowColumn, column)
         highColumn = max(highColumn, column)
         lowRow = min(lowRow, row)
@@ -286,7 +288,7 @@ public struct ImageComparison: Sendable {
     guard highColumn >= lowColumn else { return .everywhere }
     let columns = lowColumn...highColumn
     let rows = lowRow...highRow
-    let onEdges = Double(edges) / Double(count)
+    let onEdges = Double(min(edges.a, edges.b)) / Double(count)
     if onEdges >= 0.8 { return .silhouettes(share: onEdges) }
     let box = columns.count * rows.count
     if box <= width * height / 4, Double(count) >= 0.3 * Double(box) {
