@@ -57,15 +57,27 @@ public final class OutputBatch {
         abandon()
         throw OutputError(path: path, reason: "it is a directory")
       }
-      let temporary = Self.temporaryPath(for: path)
-      guard PendingFiles.add(.remove, temporary) else {
-        abandon()
-        throw OutputError(path: path, reason: "too many outputs at once")
+      // A fresh random name each try: a name another run holds (or left
+      // behind) fails O_EXCL and the next try takes another.
+      var temporary = ""
+      var descriptor: Int32 = -1
+      for _ in 0..<Self.tries {
+        temporary = Self.temporaryPath(for: path)
+        guard PendingFiles.add(.remove, temporary) else {
+          abandon()
+          throw OutputError(path: path, reason: "too many outputs at once")
+        }
+        descriptor = open(temporary, O_WRONLY | O_CREAT | O_EXCL, 0o644)
+        if descriptor >= 0 { break }
+        let failure = errno
+        PendingFiles.remove(temporary)
+        guard failure == EEXIST else {
+          errno = failure
+          break
+        }
       }
-      let descriptor = open(temporary, O_WRONLY | O_CREAT | O_EXCL, 0o644)
       guard descriptor >= 0 else {
         let reason = Self.systemReason()
-        PendingFiles.remove(temporary)
         abandon()
         throw OutputError(path: path, reason: reason)
       }
@@ -130,12 +142,17 @@ public final class OutputBatch {
   /// would undo its replacement. A file system without hard links (FAT,
   /// exFAT) leaves no backup: that one target cannot be put back.
   private func keepAside(_ target: String) -> Replacement {
-    let backup = Self.temporaryPath(for: target)
-    if operations.link(target, backup) == 0 {
-      if PendingFiles.add(.restore, backup, target) {
-        return Replacement(target: target, backup: backup, existed: true)
+    for _ in 0..<Self.tries {
+      let backup = Self.temporaryPath(for: target)
+      if operations.link(target, backup) == 0 {
+        if PendingFiles.add(.restore, backup, target) {
+          return Replacement(target: target, backup: backup, existed: true)
+        }
+        unlink(backup)
+        break
       }
-      unlink(backup)
+      // Only a name already taken is worth another try.
+      if errno != EEXIST { break }
     }
     let existed = access(target, F_OK) == 0
     if !existed { _ = PendingFiles.add(.remove, target) }
@@ -189,16 +206,21 @@ public final class OutputBatch {
     }
   }
 
-  /// `.rt-PID-N.tmp` in the target's folder: within one file system for
-  /// the rename, and short enough for any name the folder accepts.
+  /// `.rt-` and 16 random hexadecimal digits, `.tmp`, in the target's
+  /// folder: within one file system for the rename, short enough for any
+  /// name the folder accepts, and a name no other run holds (64 random
+  /// bits; a collision only costs another try, as it is created
+  /// exclusively). docs/ROBUSTNESS.md says how leftovers are removed.
   static func temporaryPath(for path: String) -> String {
     let slash = path.lastIndex(of: "/")
     let folder = slash.map { String(path[...$0]) } ?? ""
-    let number = counter.add(1).old
-    return "\(folder).rt-\(getpid())-\(number).tmp"
+    let random = String(UInt64.random(in: 0...UInt64.max), radix: 16)
+    let digits = String(repeating: "0", count: 16 - random.count) + random
+    return "\(folder).rt-\(digits).tmp"
   }
 
-  private static let counter = AtomicCounter(0)
+  /// Names tried before giving up on a folder.
+  static let tries = 8
 
   static func systemReason() -> String {
     String(cString: strerror(errno))

@@ -74,21 +74,26 @@ enum PendingFiles {
     }
   }
 
-  /// The signals that end the process and so must undo the outputs in
-  /// flight first: interrupt, quit (Ctrl-\, whose default would also show
-  /// the runtime's crash report), terminate and hang-up.
-  static let terminating = [SIGINT, SIGQUIT, SIGTERM, SIGHUP]
+  /// Every catchable signal whose default action ends the process, and so
+  /// must undo the outputs in flight first: hang-up, interrupt, quit
+  /// (Ctrl-\, whose default would also show the runtime's crash report),
+  /// terminate, a closed pipe, the alarm and profiling timers, the two
+  /// user signals, and the CPU-time and file-size limits.
+  static let terminating = [
+    SIGHUP, SIGINT, SIGQUIT, SIGTERM, SIGPIPE, SIGALRM, SIGUSR1, SIGUSR2,
+    SIGXCPU, SIGXFSZ, SIGVTALRM, SIGPROF,
+  ]
 
   /// Installs, once, handlers that undo the outputs in flight and then end
-  /// the process as the signal would; ignores SIGXFSZ, so that a write past
-  /// the file-size limit fails with EFBIG and the usual clean-up runs, and
-  /// SIGPIPE, so that a closed standard error cannot kill the process.
+  /// the process as the signal would (its default action, so the parent
+  /// sees the signal in the status). A signal ignored when the process
+  /// started (`nohup`, a shell's `cmd &`) stays ignored: the handler would
+  /// end a run its parent asked to outlive the signal.
   static func installHandlers() {
     guard !installed else { return }
     installed = true
-    signal(SIGXFSZ, SIG_IGN)
-    signal(SIGPIPE, SIG_IGN)
-    for signalNumber in terminating {
+    for signalNumber in terminating
+    where !Platform.ignoreReportingWhetherIgnored(signalNumber) {
       signal(signalNumber) { received in
         PendingFiles.undoAll()
         signal(received, SIG_DFL)

@@ -13,6 +13,17 @@
 
 /// What differs between macOS and Linux, behind one name.
 public enum Platform {
+  /// Ignores `signalNumber` and says whether it was ignored already (as a
+  /// process started by `nohup` finds SIGHUP). The handler's type differs
+  /// (`sig_t`, `__sighandler_t`); SIG_IGN is the same pointer value on both.
+  public static func ignoreReportingWhetherIgnored(_ signalNumber: Int32)
+    -> Bool
+  {
+    let previous = signal(signalNumber, SIG_IGN)
+    return unsafeBitCast(previous, to: Int.self)
+      == unsafeBitCast(SIG_IGN, to: Int.self)
+  }
+
   /// The process's environment, for `posix_spawn`.
   static var environment: UnsafeMutablePointer<UnsafeMutablePointer<CChar>?>? {
     #if canImport(Darwin)

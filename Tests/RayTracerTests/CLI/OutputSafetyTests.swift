@@ -67,12 +67,13 @@ final class OutputSafetyTests: XCTestCase {
 
   /// A render long enough (seconds, even in release) to be signalled while
   /// its temporary files exist, which is from before the render starts.
-  func interruptMidRender(with signal: Int32) throws {
+  func interruptMidRender(with signal: Int32, shell: String? = nil) throws {
     try AtomicFile.write([1, 2, 3], to: folder + "/old.png")
-    let process = try start([
-      "scenes/spheres.txt", "--size", "8000", "8000", "--threads", "1", "-o",
-      folder + "/big.png", "--normals", folder + "/old.png",
-    ])
+    let process = try start(
+      [
+        "scenes/spheres.txt", "--size", "8000", "8000", "--threads", "1", "-o",
+        folder + "/big.png", "--normals", folder + "/old.png",
+      ], shell: shell)
     var waited = 0
     while !files().contains(where: { $0.hasPrefix(".rt-") }) && waited < 400 {
       usleep(25_000)
@@ -102,17 +103,71 @@ final class OutputSafetyTests: XCTestCase {
     try interruptMidRender(with: SIGTERM)
   }
 
-  /// Past the file-size limit the write fails (EFBIG), the run says so and
-  /// removes its temporary files; the old output is intact.
-  func testFileSizeLimit_FailsCleanly() throws {
+  /// Past the file-size limit SIGXFSZ ends the run as it would any
+  /// program, after removing its temporary files; the old output is
+  /// intact.
+  func testFileSizeLimit_EndsByItsSignalCleanly() throws {
     try AtomicFile.write([1, 2, 3], to: folder + "/o.ppm")
-    let (status, stderr) = try run(
+    let process = try start(
       ["scenes/spheres.txt", "--size", "200", "200", "-o", folder + "/o.ppm"],
-      shell: "ulimit -f 8;")
-    XCTAssertEqual(status, 1, stderr)
-    XCTAssertTrue(stderr.contains("cannot write"), stderr)
+      shell: "ulimit -c 0; ulimit -f 8;")
+    _ = finish(process)
+    XCTAssertEqual(process.terminationReason, .uncaughtSignal)
+    XCTAssertEqual(process.terminationStatus, SIGXFSZ)
     XCTAssertEqual(files(), ["o.ppm"])
     XCTAssertEqual(try read("o.ppm"), [1, 2, 3])
+  }
+
+  /// The other signals whose default ends a process: the user signals, the
+  /// timers, the CPU-time limit, a closed pipe.
+  func testEveryTerminatingSignal_LeavesNoFileBehind() throws {
+    for signal in [SIGUSR1, SIGUSR2, SIGALRM, SIGXCPU, SIGVTALRM, SIGPROF, SIGPIPE, SIGHUP] {
+      try interruptMidRender(with: signal, shell: "ulimit -c 0;")
+      try FileManager.default.removeItem(atPath: folder + "/old.png")
+    }
+  }
+
+  /// A signal ignored by the parent (`nohup`, `cmd &` in a script) stays
+  /// ignored: the render goes on and writes its image.
+  func testSignalIgnoredByTheParent_StaysIgnored() throws {
+    let process = try start(
+      [
+        "scenes/spheres.txt", "--size", "1200", "1200", "--threads", "1",
+        "-o", folder + "/o.png",
+      ], shell: "trap '' HUP INT;")
+    var waited = 0
+    while !files().contains(where: { $0.hasPrefix(".rt-") }) && waited < 400 {
+      usleep(25_000)
+      waited += 1
+    }
+    kill(process.processIdentifier, SIGHUP)
+    kill(process.processIdentifier, SIGINT)
+    let (status, stderr) = finish(process)
+    XCTAssertEqual(process.terminationReason, .exit, stderr)
+    XCTAssertEqual(status, 0, stderr)
+    XCTAssertEqual(files(), ["o.png"])
+  }
+
+  /// Temporaries left by killed runs (any `.rt-*.tmp`, the old names of
+  /// process ids included) never block a later run: each run takes fresh
+  /// random names, created exclusively.
+  func testLeftoverTemporaries_DoNotBlock() throws {
+    var leftovers: [String] = []
+    for pid in [1, 2, Int(getpid()), 4_194_304] {
+      for number in 0..<3 { leftovers.append(".rt-\(pid)-\(number).tmp") }
+    }
+    for name in leftovers {
+      try AtomicFile.write([9], to: folder + "/" + name)
+    }
+    let (status, stderr) = try run([
+      "scenes/spheres.txt", "--size", "20", "20", "-o", folder + "/o.png",
+      "--depth", folder + "/d.png",
+    ])
+    XCTAssertEqual(status, 0, stderr)
+    XCTAssertEqual(files(), (leftovers + ["d.png", "o.png"]).sorted())
+    let names = Set((0..<200).map { _ in OutputBatch.temporaryPath(for: "a/b.png") })
+    XCTAssertEqual(names.count, 200, "random names")
+    XCTAssertTrue(names.allSatisfy { $0.hasPrefix("a/.rt-") && $0.count == 26 })
   }
 
   /// Two spellings of one file are refused before rendering.
