@@ -187,6 +187,12 @@ struct OBJParser {
     self.bytes = bytes
     self.file = file
     self.precision = precision
+    // A UTF-8 byte-order mark (editors on Windows write one) is not part
+    // of the first line: columns count from after it.
+    if bytes.starts(with: utf8ByteOrderMark) {
+      index = utf8ByteOrderMark.count
+      lineStart = index
+    }
   }
 
   mutating func parse() throws(SceneError) -> OBJMesh {

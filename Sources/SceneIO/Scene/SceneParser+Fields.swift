@@ -138,13 +138,23 @@ extension SceneParser {
     return value
   }
 
+  /// The largest count or index a scene may write: far beyond any scene
+  /// that fits in memory, and exact in the Double it is read as.
+  static let largestWholeNumber = 999_999_999_999_999
+
   mutating func wholeNumber(_ field: String) throws(SceneError) -> Int {
     let token = peekStart()
     let value = try number()
-    guard value >= 0, value == value.rounded(), value < 1e15 else {
+    guard value >= 0, value == value.rounded() else {
       throw error(
         at: token, "'\(field)' must be a whole number ≥ 0, found \(text(token))"
       )
+    }
+    guard value <= Double(Self.largestWholeNumber) else {
+      throw error(
+        at: token,
+        "'\(field)' must be at most \(Self.largestWholeNumber), found "
+          + text(token))
     }
     return Int(value)
   }

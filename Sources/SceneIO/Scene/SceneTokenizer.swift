@@ -1,5 +1,8 @@
 import SceneModel
 
+/// The bytes a UTF-8 file may start with to say it is UTF-8.
+let utf8ByteOrderMark: [UInt8] = [0xEF, 0xBB, 0xBF]
+
 /// One token of a scene file: a brace or a run of other non-blank bytes.
 struct SceneToken {
   enum Kind { case word, open, close, end }
@@ -28,6 +31,12 @@ struct SceneTokenizer {
   init(bytes: SceneBytes) {
     source = bytes
     self.bytes = bytes.buffer
+    // A UTF-8 byte-order mark (editors on Windows write one) is not part
+    // of the first line: columns count from after it.
+    if self.bytes.starts(with: utf8ByteOrderMark) {
+      index = utf8ByteOrderMark.count
+      lineStart = index
+    }
   }
 
   init(bytes: [UInt8]) {

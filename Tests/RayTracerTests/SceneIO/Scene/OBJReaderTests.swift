@@ -36,6 +36,19 @@ final class OBJReaderTests: XCTestCase {
 
   /// Each face form: v, v/vt, v//vn and v/vt/vn; indices become 0-based,
   /// texture coordinates and normals kept.
+  /// A UTF-8 byte-order mark at the start is skipped, and columns count
+  /// from after it.
+  func testParse_ByteOrderMarkSkipped() throws {
+    let mesh = try parse("\u{FEFF}" + Self.elements + "f 1 2 3\n")
+    XCTAssertEqual(mesh.vertices.count, 4)
+    do {
+      _ = try parse("\u{FEFF}vx 1 2 3\n")
+      XCTFail("an unknown statement")
+    } catch {
+      XCTAssertTrue(error.description.hasPrefix("mesh.obj:1:1: "), error.description)
+    }
+  }
+
   func testParse_FaceForms() throws {
     let mesh = try parse(
       Self.elements + """

@@ -58,6 +58,34 @@ final class SceneParserTests: XCTestCase {
 
   // MARK: - Valid scenes
 
+  /// A UTF-8 byte-order mark at the start (as editors on Windows write) is
+  /// skipped; columns on the first line count from after it.
+  func testParse_ByteOrderMarkSkipped() throws {
+    let scene = try parse("\u{FEFF}" + Self.full)
+    XCTAssertEqual(scene.camera.center, Vector3(0, 1, 10))
+    do {
+      _ = try parse("\u{FEFF}PerspectiveCamera { centre 0 0 1 }")
+      XCTFail("a misspelt field")
+    } catch {
+      XCTAssertTrue(error.description.hasPrefix("test.txt:1:21: error:"), error.description)
+    }
+  }
+
+  /// A count beyond the reader's limit says the limit.
+  func testParse_CountBeyondTheLimitSaysTheLimit() {
+    do {
+      _ = try parse(
+        "PerspectiveCamera { center 0 0 1 direction 0 0 -1 up 0 1 0 angle 30 }"
+          + " Group { numObjects 1000000000000000 }")
+      XCTFail("a count past the limit")
+    } catch {
+      XCTAssertTrue(
+        error.description.hasSuffix(
+          "'numObjects' must be at most 999999999999999, found "
+            + "1000000000000000"), error.description)
+    }
+  }
+
   func testParse_EveryBlock() throws {
     let scene = try parse(Self.full)
     XCTAssertEqual(scene.camera.center, Vector3(0, 1, 10))
