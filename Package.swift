@@ -153,7 +153,9 @@ let package = Package(
     ),
     .testTarget(
       name: "CourseTests",
-      dependencies: ["Course", "SceneModel", "SceneIO", "FastEngine"]
+      dependencies: [
+        "Course", "SceneModel", "SceneIO", "FastEngine", "Measurement",
+      ]
     ),
     .testTarget(
       name: "RayTracerTests",
