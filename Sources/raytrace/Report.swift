@@ -127,7 +127,10 @@ struct Report: ParsableCommand {
     for path in paths {
       let scene: Scene
       do {
-        scene = try SceneParser.parse(contentsOf: path)
+        // Either format, by content, as `render` reads it.
+        scene = try SceneReader.read(
+          contentsOf: path,
+          options: SceneOptions(style: .course, shapes: CourseShapes.all))
       } catch {
         printError(error.description)
         throw ExitCode.failure
@@ -141,8 +144,7 @@ struct Report: ParsableCommand {
           let options = SceneOptions(
             style: .course, precision: precision, shapes: CourseShapes.all)
           guard
-            (try? SceneParser.parse(contentsOf: path, options: options))
-              != nil
+            (try? SceneReader.read(contentsOf: path, options: options)) != nil
           else { continue }
         }
         // Generic over the reference's scalar, chosen by --reference.
@@ -199,7 +201,10 @@ struct Report: ParsableCommand {
       for path in scenes.isEmpty ? Self.defaultScenes : paths {
         let scene: Scene
         do {
-          scene = try SceneParser.parse(contentsOf: path)
+          // Either format, by content, as `render` reads it.
+        scene = try SceneReader.read(
+          contentsOf: path,
+          options: SceneOptions(style: .course, shapes: CourseShapes.all))
         } catch {
           printError(error.description)
           throw ExitCode.failure

@@ -4,16 +4,24 @@ import SceneModel
 /// decoders recurse once per level of nesting, so a file of a few
 /// megabytes nested a hundred thousand deep would overflow the stack.
 extension PropertyList {
-  /// Throws when `bytes` nest deeper than `maximumDepth`, or when a binary
-  /// list's object table is not one the depth can be read from.
-  static func checkDepth(_ bytes: [UInt8], file: String) throws(SceneError) {
+  /// Throws when `bytes` nest deeper than `maximumDepth`, when a binary
+  /// list's object table is not one the depth can be read from or its
+  /// shared references expand beyond `maximumVisits(forSize:)`, or when an
+  /// XML list has a problem the scan finds (`xmlProblem`).
+  static func check(_ bytes: [UInt8], file: String) throws(SceneError) {
     let tooDeep =
       "the property list is nested more than \(maximumDepth) levels deep"
     if bytes.starts(with: Array("bplist".utf8)) {
-      switch binaryDepth(bytes) {
-      case .some(let depth) where depth <= maximumDepth: return
-      case .some:
+      switch binaryShape(bytes) {
+      case .some(let shape) where shape.depth > maximumDepth:
         throw SceneError(file: file, line: 0, column: 0, message: tooDeep)
+      case .some(let shape) where shape.visits > maximumVisits(forSize: bytes.count):
+        throw SceneError(
+          file: file, line: 0, column: 0,
+          message: "the property list's shared objects would be read more "
+            + "than \(maximumVisits(forSize: bytes.count)) times (each "
+            + "reference to an object reads it again)")
+      case .some: return
       case .none:
         throw SceneError(
           file: file, line: 0, column: 0,
@@ -21,70 +29,44 @@ extension PropertyList {
             + "malformed")
       }
     }
-    if let line = xmlLineBeyondDepth(bytes) {
-      throw SceneError(file: file, line: line, column: 0, message: tooDeep)
-    }
-  }
-
-  /// The line of an XML property list at which its elements first nest
-  /// deeper than `maximumDepth`, or nil. A conservative count of opening
-  /// and closing `dict` and `array` tags; binary lists are not scanned.
-  static func xmlLineBeyondDepth(_ bytes: [UInt8]) -> Int? {
-    guard !bytes.starts(with: Array("bplist".utf8)) else { return nil }
-    var depth = 0
-    var line = 1
-    var index = 0
-    let count = bytes.count
-    while index < count {
-      let byte = bytes[index]
-      if byte == 0x0A {
-        line += 1
-      } else if byte == UInt8(ascii: "<"), index + 1 < count {
-        let closing = bytes[index + 1] == UInt8(ascii: "/")
-        let nameStart = index + (closing ? 2 : 1)
-        if starts(bytes, at: nameStart, with: "dict")
-          || starts(bytes, at: nameStart, with: "array")
-        {
-          var end = nameStart
-          while end < count && bytes[end] != UInt8(ascii: ">") { end += 1 }
-          let selfClosing =
-            end > 0 && end < count
-            && bytes[end - 1] == UInt8(ascii: "/")
-          if closing {
-            depth -= 1
-          } else if !selfClosing {
-            depth += 1
-            if depth > maximumDepth { return line }
-          }
-        }
+    var text = bytes
+    if let encoding = bytes.withUnsafeBufferPointer(wideEncoding) {
+      guard let utf8 = utf8(bytes, from: encoding) else {
+        throw SceneError(
+          file: file, line: 0, column: 0,
+          message: "not a valid property list: its text is not valid in the "
+            + "encoding its byte-order mark names")
       }
-      index += 1
+      text = utf8
     }
-    return nil
-  }
-
-  private static func starts(
-    _ bytes: [UInt8], at index: Int, with word: StaticString
-  ) -> Bool {
-    let length = word.utf8CodeUnitCount
-    guard index + length <= bytes.count else { return false }
-    return word.withUTF8Buffer { word in
-      for offset in 0..<length where bytes[index + offset] != word[offset] {
-        return false
-      }
-      return true
+    if let problem = xmlProblem(text) {
+      throw SceneError(
+        file: file, line: problem.line, column: 0,
+        message: problem.message.hasPrefix("the property list is nested")
+          ? problem.message : "not a valid property list: \(problem.message)")
     }
   }
 
-  /// The nesting depth of a binary property list (`bplist00`): 1 for a
-  /// top object that holds no array, set or dictionary, and more than
-  /// `maximumDepth` for a list whose references form a cycle. Nil when its
-  /// trailer or object table point outside the file.
+  /// The most objects a decode may visit, shared references counted each
+  /// time they are reached: 16 per byte of the file and a thousand more,
+  /// far above any list without sharing (each object takes at least a
+  /// byte) and far below what sharing can make (2ⁿ from n objects).
+  static func maximumVisits(forSize size: Int) -> Int {
+    16 * size + 1000
+  }
+
+  /// The nesting depth of a binary property list (`bplist00`), 1 for a
+  /// top object that holds no array, set or dictionary and more than
+  /// `maximumDepth` for a list whose references form a cycle; and how many
+  /// objects a decode visits, each reference to a shared object counted
+  /// (saturating far above any limit). Nil when its trailer or object table
+  /// point outside the file.
   ///
-  /// Iterative, with each object's depth computed once, so neither the
-  /// file's nesting nor objects shared between containers cost stack or
-  /// time beyond one visit of each reference.
-  static func binaryDepth(_ bytes: [UInt8]) -> Int? {
+  /// Iterative, with each object's depth and visits computed once, so
+  /// neither the file's nesting nor objects shared between containers cost
+  /// stack or time beyond one visit of each reference; every size is
+  /// checked before it is multiplied, so no count a file claims overflows.
+  static func binaryShape(_ bytes: [UInt8]) -> (depth: Int, visits: Int)? {
     let count = bytes.count
     guard count >= 8 + 32 else { return nil }
     func integer(_ offset: Int, _ size: Int) -> Int? {
@@ -123,6 +105,8 @@ extension PropertyList {
         length = value
         start += 1 + size
       }
+      // A count the file cannot hold is refused before it is doubled.
+      guard length <= count, start <= count else { return nil }
       let references = kind == 0xD ? 2 * length : length
       guard references <= (count - start) / max(referenceSize, 1)
       else { return nil }
@@ -138,17 +122,25 @@ extension PropertyList {
       }
       return result
     }
-    // depth[o]: 0 unvisited, −1 on the current path, else its depth.
+    // depth[o]: 0 unvisited, −1 on the current path, else its depth;
+    // visits[o] the objects a decode of o reads, o itself included.
+    let saturated = 1 << 60
     var depth = [Int](repeating: 0, count: objects)
-    var stack: [(object: Int, children: [Int], next: Int, deepest: Int)] = []
+    var visits = [Int](repeating: 0, count: objects)
+    var stack:
+      [(object: Int, children: [Int], next: Int, deepest: Int, visits: Int)] =
+        []
     guard let first = children(top) else { return nil }
-    stack.append((top, first, 0, 0))
+    stack.append((top, first, 0, 0, 1))
     depth[top] = -1
+    let tooDeep = (maximumDepth + 1, 0)
     while var frame = stack.popLast() {
       if frame.next == frame.children.count {
         depth[frame.object] = frame.deepest + 1
+        visits[frame.object] = frame.visits
         if var parent = stack.popLast() {
           parent.deepest = max(parent.deepest, frame.deepest + 1)
+          parent.visits = min(saturated, parent.visits + frame.visits)
           stack.append(parent)
         }
         continue
@@ -157,18 +149,19 @@ extension PropertyList {
       frame.next += 1
       switch depth[child] {
       case -1:
-        return maximumDepth + 1
+        return tooDeep
       case 0:
-        guard stack.count < maximumDepth else { return maximumDepth + 1 }
+        guard stack.count < maximumDepth else { return tooDeep }
         guard let grandchildren = children(child) else { return nil }
         stack.append(frame)
         depth[child] = -1
-        stack.append((child, grandchildren, 0, 0))
+        stack.append((child, grandchildren, 0, 0, 1))
       default:
         frame.deepest = max(frame.deepest, depth[child])
+        frame.visits = min(saturated, frame.visits + visits[child])
         stack.append(frame)
       }
     }
-    return depth[top]
+    return (depth[top], visits[top])
   }
 }

@@ -45,6 +45,9 @@ enum PropertyList: Decodable, Sendable {
   /// with `<`.
   static func recognises(_ bytes: UnsafeBufferPointer<UInt8>) -> Bool {
     if bytes.starts(with: Array("bplist".utf8)) { return true }
+    // UTF-16 and UTF-32 with their byte-order marks, as Foundation reads
+    // them: the first character after the mark is '<'.
+    if wideEncoding(bytes) != nil { return true }
     var index = 0
     if bytes.starts(with: [0xEF, 0xBB, 0xBF]) { index = 3 }
     while index < bytes.count,
@@ -55,18 +58,101 @@ enum PropertyList: Decodable, Sendable {
     return index < bytes.count && bytes[index] == UInt8(ascii: "<")
   }
 
+  /// The encoding of an XML property list in UTF-16 or UTF-32 with a
+  /// byte-order mark whose first character is '<'; nil otherwise.
+  static func wideEncoding(_ bytes: UnsafeBufferPointer<UInt8>)
+    -> WideEncoding?
+  {
+    let marks: [([UInt8], WideEncoding)] = [
+      ([0xFF, 0xFE, 0x00, 0x00, 0x3C, 0x00, 0x00, 0x00], .utf32LittleEndian),
+      ([0x00, 0x00, 0xFE, 0xFF, 0x00, 0x00, 0x00, 0x3C], .utf32BigEndian),
+      ([0xFF, 0xFE, 0x3C, 0x00], .utf16LittleEndian),
+      ([0xFE, 0xFF, 0x00, 0x3C], .utf16BigEndian),
+    ]
+    return marks.first { bytes.starts(with: $0.0) }?.1
+  }
+
+  enum WideEncoding {
+    case utf16LittleEndian, utf16BigEndian, utf32LittleEndian, utf32BigEndian
+  }
+
+  /// The text of a UTF-16 or UTF-32 file as UTF-8, without its mark, for
+  /// the scan; nil when it is not valid in its encoding.
+  static func utf8(_ bytes: [UInt8], from encoding: WideEncoding) -> [UInt8]? {
+    let width = encoding == .utf16LittleEndian || encoding == .utf16BigEndian
+      ? 2 : 4
+    let little = encoding == .utf16LittleEndian || encoding == .utf32LittleEndian
+    guard bytes.count % width == 0 else { return nil }
+    var units: [UInt32] = []
+    units.reserveCapacity(bytes.count / width - 1)
+    for start in stride(from: width, to: bytes.count, by: width) {
+      var unit: UInt32 = 0
+      for offset in 0..<width {
+        let byte = UInt32(bytes[start + (little ? width - 1 - offset : offset)])
+        unit = unit << 8 | byte
+      }
+      units.append(unit)
+    }
+    var text = ""
+    if width == 2 {
+      var decoder = UTF16()
+      var iterator = units.map { UInt16(truncatingIfNeeded: $0) }.makeIterator()
+      loop: while true {
+        switch decoder.decode(&iterator) {
+        case .scalarValue(let scalar): text.unicodeScalars.append(scalar)
+        case .emptyInput: break loop
+        case .error: return nil
+        }
+      }
+    } else {
+      for unit in units {
+        guard let scalar = Unicode.Scalar(unit) else { return nil }
+        text.unicodeScalars.append(scalar)
+      }
+    }
+    return Array(text.utf8)
+  }
+
+  /// `text` with its XML declaration's encoding, if it names one, made
+  /// UTF-8, as the text now is.
+  static func declaringUTF8(_ text: [UInt8]) -> [UInt8] {
+    let string = String(decoding: text, as: UTF8.self)
+    guard string.hasPrefix("<?xml"), let end = string.firstRange(of: "?>"),
+      let attribute = string[..<end.lowerBound].firstRange(of: "encoding=")
+    else { return text }
+    let valueStart = attribute.upperBound
+    guard valueStart < end.lowerBound else { return text }
+    let quote = string[valueStart]
+    guard quote == "\"" || quote == "'",
+      let valueEnd = string[string.index(after: valueStart)..<end.lowerBound]
+        .firstIndex(of: quote)
+    else { return text }
+    return Array(
+      (string[..<valueStart] + "\"UTF-8\"" + string[string.index(after: valueEnd)...])
+        .utf8)
+  }
+
   /// Decodes `bytes`.
   ///
-  /// - Throws: `SceneError` in `file`, at the decoder's line where it
-  ///   gives one, for a file that is not a well-formed property list or is
-  ///   nested deeper than `maximumDepth`.
+  /// - Throws: `SceneError` in `file`, at the line of the problem, for a
+  ///   file that is not a well-formed property list, is nested deeper than
+  ///   `maximumDepth`, or whose shared references would make the decoder
+  ///   visit more than `maximumVisits(forSize:)` objects.
   static func decode(
     _ bytes: [UInt8], file: String
   ) throws(SceneError) -> PropertyList {
-    try checkDepth(bytes, file: file)
+    try check(bytes, file: file)
+    // UTF-16 and UTF-32 are decoded as UTF-8: Foundation on Linux reads
+    // no UTF-32 (macOS reads both), and then every platform reads both.
+    var decodable = bytes
+    if let encoding = bytes.withUnsafeBufferPointer(wideEncoding),
+      let utf8 = utf8(bytes, from: encoding)
+    {
+      decodable = declaringUTF8(utf8)
+    }
     do {
       return try PropertyListDecoder().decode(
-        PropertyList.self, from: Data(bytes))
+        PropertyList.self, from: Data(decodable))
     } catch {
       let (line, reason) = describe(error)
       throw SceneError(
@@ -87,12 +173,11 @@ enum PropertyList: Decodable, Sendable {
         reason = detail
       }
     }
-    var line: Int?
-    let marker = " on line "
-    if let last = reason.ranges(of: marker).last {
-      let digits = reason[last.upperBound...].prefix { $0.isNumber }
-      line = Int(digits)
-    }
+    // The decoder's line is not always the problem's (it said line 1 for
+    // a wrong tag on line 22): the scan before decoding finds every
+    // problem of the file's structure at its line, so what reaches here
+    // is named without one.
+    let line: Int? = nil
     // One line, whatever the decoder said.
     reason = reason.split(whereSeparator: \.isNewline).joined(separator: " ")
     if reason.hasSuffix(".") { reason.removeLast() }

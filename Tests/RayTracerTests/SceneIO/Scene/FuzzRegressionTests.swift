@@ -219,7 +219,7 @@ final class FuzzRegressionTests: XCTestCase {
 
     assertError(
       Self.camera + "Group { numObjects 1e15 \(Self.sphere) }", line: 2,
-      column: 20, "'numObjects' must be a whole number ≥ 0, found 1e15")
+      column: 20, "'numObjects' must be at most 999999999999999, found 1e15")
   }
 
   /// Before the budget, each of 200 nested groups reserved its declared

@@ -319,7 +319,7 @@ final class PlistSceneReaderTests: XCTestCase {
         "deep.plist: error: the property list is nested more than 816 "
           + "levels deep")
     }
-    XCTAssertEqual(PropertyList.binaryDepth(Array(binary)), 817)
+    XCTAssertEqual(PropertyList.binaryShape(Array(binary))?.depth, 817)
     for cut in stride(from: 8, to: binary.count, by: 97) {
       XCTAssertThrowsError(
         try SceneReader.parse(bytes: Array(binary.prefix(cut)), file: "c"))
