@@ -72,12 +72,12 @@ struct Bench: ParsableCommand {
     let peerBenchmark = peer.map { PeerBenchmark(script: $0, runs: runs) }
     let peerHeader =
       peerBenchmark == nil ? "" : " Mitsuba 3 (Mrays/s) | ÷ Mitsuba |"
-    print(
+    printOutput(
       "| workload | size | objects | threads | outputs | samples | "
         + "render, warm (ms) | Mrays/s | render, first (ms) | end to end (s) | "
         + "peak memory (MiB) |" + peerHeader
     )
-    print(
+    printOutput(
       "|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|"
         + (peerBenchmark == nil ? "" : "---:|---:|"))
     var endToEnd: [Int: Double] = [:]
@@ -110,7 +110,7 @@ struct Bench: ParsableCommand {
         let objects =
           workload.generatedCount.map(String.init)
           ?? result.objects.map(String.init) ?? "?"
-        print(
+        printOutput(
           "| \(workload.name) | \(workload.width)×\(workload.height) | "
             + "\(objects) | "
             + "\(result.threads) | "
@@ -134,7 +134,7 @@ struct Bench: ParsableCommand {
       }
     }
     if !missing.isEmpty {
-      print(
+      printOutput(
         "\nLeft out ("
           + (reference.map { "not in \($0)" } ?? "no --reference folder")
           + "): "
@@ -142,7 +142,7 @@ struct Bench: ParsableCommand {
     }
     // The scaling goal, read off the rows above.
     if let large = endToEnd[1_000_000], let small = endToEnd[10_000] {
-      print(
+      printOutput(
         "\n10⁶ spheres end to end ÷ 10⁴ spheres end to end (depth + normals, "
           + "all cores): "
           + "\(formatted(large / small, digits: 3))×")

@@ -96,7 +96,7 @@ struct Compare: ParsableCommand {
         ?? ImageComparison.defaultTolerance(
           eightBit: first.isEightBit && second.isEightBit))
     for line in comparison.report(a, b, need: need / 100) {
-      print(line)
+      printOutput(line)
     }
     if let diff {
       let image = comparison.differenceImage(first, second)

@@ -4,6 +4,37 @@ import SceneIO
 import SceneModel
 
 
+/// Standard output, written line by line with write(2) so that a failed
+/// write is seen (a full device, a closed file): `main` then reports it
+/// and exits 1 rather than 0 with the output lost.
+enum StandardOutput {
+  /// The reason of the first write that failed, if one did.
+  nonisolated(unsafe) static var failure: String?
+
+  static func write(_ line: String) {
+    let bytes = Array((line + "\n").utf8)
+    var written = 0
+    while written < bytes.count {
+      let result = bytes[written...].withUnsafeBytes {
+        SceneModel.write(1, $0.baseAddress, $0.count)
+      }
+      if result < 0 && errno == EINTR { continue }
+      guard result > 0 else {
+        if failure == nil {
+          failure = result < 0 ? String(cString: strerror(errno)) : "nothing written"
+        }
+        return
+      }
+      written += result
+    }
+  }
+}
+
+/// Writes one line to standard output (`StandardOutput`).
+func printOutput(_ line: String = "") {
+  StandardOutput.write(line)
+}
+
 /// Writes one line to standard error.
 func printError(_ line: String) {
   // write(2) rather than fputs(stderr): the C global is shared mutable

@@ -40,8 +40,18 @@ struct Raytrace: ParsableCommand {
       var command = try parseCommand(Array(CommandLine.arguments.dropFirst()))
       try command.run()
     } catch {
+      reportOutputFailure()
       exit(withError: error)
     }
+    reportOutputFailure()
+  }
+
+  /// A write to standard output that failed (a full device, a closed
+  /// file) is an error: one line, status 1.
+  static func reportOutputFailure() {
+    guard let failure = StandardOutput.failure else { return }
+    printError("raytrace: error: cannot write to standard output: \(failure)")
+    exit(withError: ExitCode.failure)
   }
 
   /// Parses and validates a command line as `raytrace` does, with the same

@@ -37,18 +37,18 @@ extension Render {
       CourseEngine.probe(scene, settings: settings, column: column, row: row)
     }
     let need = 0.999
-    print(
+    printOutput(
       "course engine against fast engine (\(settings.precision), "
         + "\(settings.method)), \(settings.width)×\(settings.height):")
     var failed = false
     for output in check.outputs {
-      print("\n\(output.name):")
+      printOutput("\n\(output.name):")
       let names = ("course", "fast")
       for line in output.comparison.report(names.0, names.1, need: need).dropFirst()
       {
-        print("  " + line)
+        printOutput("  " + line)
       }
-      for line in output.pixel { print("  " + line) }
+      for line in output.pixel { printOutput("  " + line) }
       if output.comparison.share < need { failed = true }
     }
     if failed { throw ExitCode.failure }

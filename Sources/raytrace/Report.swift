@@ -120,11 +120,18 @@ struct Report: ParsableCommand {
       try checkOutputFolder(heatmaps)
     }
     if let csv {
+      // Never over what this run reads.
+      for path in paths where FileIdentity.same(csv, path) {
+        throw ValidationError(
+          "--csv '\(SceneParser.escaped(csv))' would overwrite the scene "
+            + "file '\(SceneParser.escaped(path))'.")
+      }
       try checked { () throws(OutputError) in try AtomicFile.checkWritable(csv)
       }
     }
-    print(AccuracyRow.markdownHeader)
-    for path in paths {
+    let names = Self.distinctNames(paths.map(sceneName))
+    printOutput(AccuracyRow.markdownHeader)
+    for (path, name) in zip(paths, names) {
       let scene: Scene
       do {
         // Either format, by content, as `render` reads it.
@@ -135,7 +142,6 @@ struct Report: ParsableCommand {
         printError(error.description)
         throw ExitCode.failure
       }
-      let name = sceneName(path)
       for precision in Precision.allCases {
         // A scene whose numbers the precision cannot hold (the stiff
         // suite's double-only scenes) has no row in it: the renderer
@@ -161,7 +167,7 @@ struct Report: ParsableCommand {
               width: width, height: height, seconds: seconds,
               naiveSeconds: naiveSeconds, measurement: measurement,
               epsilon: buffers.epsilon)
-            print(row.markdown)
+            printOutput(row.markdown)
             rows.append(row)
             if let heatmaps {
               let image = ErrorHeatmap.image(
@@ -196,8 +202,8 @@ struct Report: ParsableCommand {
       }
     }
     if !skipAntialiasing {
-      print()
-      print(antialiasingHeader)
+      printOutput()
+      printOutput(antialiasingHeader)
       for path in scenes.isEmpty ? Self.defaultScenes : paths {
         let scene: Scene
         do {
@@ -218,7 +224,7 @@ struct Report: ParsableCommand {
             scene, width: w, height: h, samples: samples, threads: threads,
             runs: runs)
           let m = AntialiasingMeasurement(color, against: reference)
-          print(
+          printOutput(
             "| \(sceneName(path)) | \(w)×\(h) | \(samples) | "
               + "\(formatted(seconds * 1000, digits: 3)) | "
               + "\(scientific(m.rootMeanSquare)) | "
@@ -253,6 +259,18 @@ struct Report: ParsableCommand {
       )
     }
     return stiff + Self.defaultScenes
+  }
+
+  /// The names, those that repeat numbered in order (`scene`, `scene-2`,
+  /// …), so that two scenes of one name in different folders give two
+  /// rows and two heatmaps that can be told apart.
+  static func distinctNames(_ names: [String]) -> [String] {
+    var seen: [String: Int] = [:]
+    return names.map { name in
+      seen[name, default: 0] += 1
+      let count = seen[name] ?? 1
+      return count == 1 ? name : "\(name)-\(count)"
+    }
   }
 
   private func sceneName(_ path: String) -> String {

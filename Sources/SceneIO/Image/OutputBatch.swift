@@ -35,7 +35,9 @@ public final class OutputBatch {
   }
 
   public let paths: [String]
-  private var temporaries: [String] = []
+  /// Per path, its temporary file, or nil for a target written in place
+  /// (a FIFO or a character device, which is never replaced).
+  private var temporaries: [String?] = []
   private var descriptors: [Int32] = []
   private let operations: FileOperations
   private var finished = false
@@ -52,10 +54,16 @@ public final class OutputBatch {
     self.paths = paths
     self.operations = operations
     for path in paths {
-      var status = stat()
-      if stat(path, &status) == 0 && (status.st_mode & S_IFMT) == S_IFDIR {
+      do throws(OutputError) {
+        if let descriptor = try Self.openInPlace(path) {
+          temporaries.append(nil)
+          descriptors.append(descriptor)
+          continue
+        }
+        try Self.checkReplaceable(path)
+      } catch {
         abandon()
-        throw OutputError(path: path, reason: "it is a directory")
+        throw error
       }
       // A fresh random name each try: a name another run holds (or left
       // behind) fails O_EXCL and the next try takes another.
@@ -86,6 +94,69 @@ public final class OutputBatch {
     }
   }
 
+  /// A target that is not a regular file: a FIFO or a character device
+  /// (`/dev/null`, a terminal) is written in place, opened now (a FIFO
+  /// only when a reader is waiting, so that nothing blocks); a directory,
+  /// socket or block device is refused. Nil for a regular file or none.
+  static func openInPlace(_ path: String) throws(OutputError) -> Int32? {
+    var status = stat()
+    guard stat(path, &status) == 0 else { return nil }
+    switch status.st_mode & S_IFMT {
+    case S_IFREG: return nil
+    case S_IFDIR: throw OutputError(path: path, reason: "it is a directory")
+    case S_IFIFO, S_IFCHR:
+      let descriptor = open(path, O_WRONLY | O_NONBLOCK | O_CLOEXEC)
+      guard descriptor >= 0 else {
+        throw OutputError(
+          path: path,
+          reason: errno == ENXIO
+            ? "it is a FIFO with no reader" : systemReason())
+      }
+      Platform.setBlocking(descriptor)
+      return descriptor
+    case S_IFSOCK:
+      throw OutputError(path: path, reason: "it is a socket")
+    default:
+      throw OutputError(
+        path: path, reason: "it is a device that is not written as a file")
+    }
+  }
+
+  /// What the final rename could refuse, checked before any work: a name
+  /// longer than its folder allows, a path longer than the system's, and a
+  /// file in a sticky folder (/tmp) that belongs to another user.
+  static func checkReplaceable(_ path: String) throws(OutputError) {
+    let slash = path.lastIndex(of: "/")
+    let folder = slash.map { $0 == path.startIndex ? "/" : String(path[..<$0]) }
+      ?? "."
+    let name = slash.map { String(path[path.index(after: $0)...]) } ?? path
+    let limit = Platform.nameLimit(inFolder: folder)
+    if let limit, name.utf8.count > limit {
+      throw OutputError(
+        path: path,
+        reason: "its name is \(name.utf8.count) bytes long, and the folder "
+          + "allows at most \(limit)")
+    }
+    if path.utf8.count >= Platform.pathLimit {
+      throw OutputError(
+        path: path,
+        reason: "the path is \(path.utf8.count) bytes long, and the system "
+          + "allows at most \(Platform.pathLimit - 1)")
+    }
+    var target = stat()
+    var parent = stat()
+    guard stat(path, &target) == 0, stat(folder, &parent) == 0,
+      parent.st_mode & S_ISVTX != 0
+    else { return }
+    let user = geteuid()
+    if user != 0 && target.st_uid != user && parent.st_uid != user {
+      throw OutputError(
+        path: path,
+        reason: "it belongs to another user, in a folder where only a "
+          + "file's owner may replace it (sticky)")
+    }
+  }
+
   deinit { abandon() }
 
   /// Removes every temporary; the targets are left as they were.
@@ -94,6 +165,7 @@ public final class OutputBatch {
     finished = true
     for (temporary, descriptor) in zip(temporaries, descriptors) {
       close(descriptor)
+      guard let temporary else { continue }
       unlink(temporary)
       PendingFiles.remove(temporary)
     }
@@ -118,14 +190,16 @@ public final class OutputBatch {
     var replaced: [Replacement] = []
     defer { forget(replaced) }
     for (index, target) in paths.enumerated() {
+      // Written in place: nothing to rename.
+      guard let temporary = temporaries[index] else { continue }
       let entry = keepAside(target)
       replaced.append(entry)
-      guard operations.rename(temporaries[index], target) == 0 else {
+      guard operations.rename(temporary, target) == 0 else {
         let reason = Self.systemReason()
         undo(replaced.dropLast(), from: index)
         throw OutputError(path: target, reason: reason)
       }
-      PendingFiles.remove(temporaries[index])
+      PendingFiles.remove(temporary)
     }
     finished = true
   }
@@ -181,7 +255,7 @@ public final class OutputBatch {
         unlink(entry.target)
       }
     }
-    for temporary in temporaries[index...] {
+    for case let temporary? in temporaries[index...] {
       unlink(temporary)
       PendingFiles.remove(temporary)
     }

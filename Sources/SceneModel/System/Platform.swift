@@ -13,6 +13,23 @@
 
 /// What differs between macOS and Linux, behind one name.
 public enum Platform {
+  /// The longest file name `folder`'s file system accepts, or nil when it
+  /// does not say (pathconf's _PC_NAME_MAX, 255 on most).
+  public static func nameLimit(inFolder folder: String) -> Int? {
+    let limit = pathconf(folder, Int32(_PC_NAME_MAX))
+    return limit > 0 ? limit : nil
+  }
+
+  /// PATH_MAX: the longest path a system call accepts, its final NUL
+  /// included (4096 on Linux, 1024 on macOS).
+  public static let pathLimit = Int(PATH_MAX)
+
+  /// Clears O_NONBLOCK on an open descriptor, so that writes wait.
+  public static func setBlocking(_ descriptor: Int32) {
+    let flags = fcntl(descriptor, F_GETFL)
+    if flags >= 0 { _ = fcntl(descriptor, F_SETFL, flags & ~O_NONBLOCK) }
+  }
+
   /// Ignores `signalNumber` and says whether it was ignored already (as a
   /// process started by `nohup` finds SIGHUP). The handler's type differs
   /// (`sig_t`, `__sighandler_t`); SIG_IGN is the same pointer value on both.
