@@ -1,17 +1,36 @@
 import SceneModel
 
-
 /// The course's objects for a scene as the readers give it: the one place
 /// that names each kind of object for the course engine.
-enum SceneObjects {
+struct SceneObjects {
+  /// Each mesh made once per reading of its file and material, however
+  /// often the scene names it (a mesh under many transforms).
+  private var meshes: [MeshKey: TriangleMesh] = [:]
+
+  private struct MeshKey: Hashable {
+    var storage: ObjectIdentifier
+    var material: Int
+  }
+
   /// The scene's root group as the course's objects.
   static func group(_ group: SceneModel.Group<Double>) -> Group {
-    Group(group.objects.compactMap(object))
+    var objects = SceneObjects()
+    return objects.group(group)
+  }
+
+  /// One object of the scene as the course's.
+  static func object(_ object: SceneObject<Double>) -> (any Hittable)? {
+    var objects = SceneObjects()
+    return objects.object(object)
+  }
+
+  mutating func group(_ group: SceneModel.Group<Double>) -> Group {
+    Group(group.objects.compactMap { object($0) })
   }
 
   /// One object of the scene as the course's; nil for a transform with no
   /// inverse, which nothing can hit.
-  static func object(_ object: SceneObject<Double>) -> (any Hittable)? {
+  mutating func object(_ object: SceneObject<Double>) -> (any Hittable)? {
     switch object {
     case .sphere(let sphere):
       return Sphere(
@@ -24,7 +43,12 @@ enum SceneObjects {
     case .triangle(let triangle):
       return Self.triangle(triangle)
     case .mesh(let mesh):
-      return TriangleMesh(mesh.map(Self.triangle))
+      let key = MeshKey(
+        storage: mesh.storage.identity, material: mesh.materialIndex)
+      if mesh.materialIndices.isEmpty, let made = meshes[key] { return made }
+      let made = TriangleMesh(mesh.map(Self.triangle))
+      if mesh.materialIndices.isEmpty { meshes[key] = made }
+      return made
     case .group(let inner):
       return group(inner)
     case .transform(let transform):

@@ -24,6 +24,44 @@ enum MeshLoader {
     case atReference(String)
   }
 
+  /// The meshes one scene has read, by how they were read: a file the
+  /// scene names many times is read and stored once, each use sharing its
+  /// arrays with its own material (`TriangleMesh.withMaterial`).
+  final class Cache: Sendable {
+    struct Key: Hashable {
+      var file: FileIdentity.Key
+      var textured: Bool
+      var normals: MeshNormals
+      var precision: Precision
+    }
+    let loaded = Locked<[Key: Loaded]>([:])
+  }
+
+  /// `load`, from `cache` when the same file was read the same way.
+  static func load(
+    _ path: String, materialIndex: Int, textured: Bool, normals: MeshNormals,
+    precision: Precision = .double, cache: Cache
+  ) throws(Failure) -> Loaded {
+    guard let file = FileIdentity.key(path) else {
+      return try load(
+        path, materialIndex: materialIndex, textured: textured,
+        normals: normals, precision: precision)
+    }
+    let key = Cache.Key(
+      file: file, textured: textured, normals: normals, precision: precision)
+    if var found = cache.loaded.withLock({ $0[key] }),
+      case .mesh(let mesh) = found.object
+    {
+      found.object = .mesh(mesh.withMaterial(materialIndex))
+      return found
+    }
+    let loaded = try load(
+      path, materialIndex: materialIndex, textured: textured,
+      normals: normals, precision: precision)
+    cache.loaded.withLock { $0[key] = loaded }
+    return loaded
+  }
+
   static func load(
     _ path: String, materialIndex: Int, textured: Bool, normals: MeshNormals,
     precision: Precision = .double

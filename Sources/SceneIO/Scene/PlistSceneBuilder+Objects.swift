@@ -217,7 +217,8 @@ extension PlistSceneBuilder {
     do {
       loaded = try MeshLoader.load(
         file, materialIndex: material, textured: textured,
-        normals: options.meshNormals, precision: options.precision)
+        normals: options.meshNormals, precision: options.precision,
+        cache: meshCache)
     } catch {
       switch error {
       case .inFile(let inner): throw inner

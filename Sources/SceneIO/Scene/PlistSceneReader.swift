@@ -55,6 +55,8 @@ struct PlistSceneBuilder {
   /// Every mesh file read, for `Scene.meshFiles` (a reference: the reader's
   /// methods do not mutate it otherwise).
   let meshFiles = ReadFiles()
+  /// Each mesh file read once, however often the scene names it.
+  let meshCache = MeshLoader.Cache()
   /// Transforms open at the current object: only the outermost checks the
   /// geometry it moves, as in the text format.
   var openTransforms = 0

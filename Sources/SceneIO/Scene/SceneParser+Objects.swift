@@ -289,7 +289,8 @@ extension SceneParser {
     do {
       let mesh = try MeshLoader.load(
         resolved, materialIndex: material, textured: textured ?? false,
-        normals: options.meshNormals, precision: options.precision)
+        normals: options.meshNormals, precision: options.precision,
+        cache: meshCache)
       meshFiles.append(resolved)
       if !mesh.hasTextureCoordinates {
         meshesWithoutTextureCoordinates.append((material, token, resolved))

@@ -48,6 +48,8 @@ public struct SceneParser {
   var parsedMaterials: [Material<Double>]?
   /// Every mesh file read, for `Scene.meshFiles`.
   var meshFiles: [String] = []
+  /// Each mesh file read once, however often the scene names it.
+  let meshCache = MeshLoader.Cache()
   /// Meshes without texture coordinates, checked against their material
   /// when the scene is read: a textured material needs them.
   var meshesWithoutTextureCoordinates:

@@ -36,6 +36,21 @@ public struct TriangleMesh<Scalar: RayScalar>: Hashable, Sendable {
   public private(set) var materialIndex = 0
   /// One per triangle, or empty when all have `materialIndex`.
   public private(set) var materialIndices: [Int] = []
+  /// Which reading of a file the arrays come from: the same for every copy
+  /// and `withMaterial` of one mesh, so that a renderer can build what it
+  /// needs of a mesh once however often the scene names it. It takes no
+  /// part in comparing meshes.
+  public private(set) var storage = StorageTag()
+
+  /// A tag equal to every other: meshes compare by their triangles.
+  public struct StorageTag: Hashable, Sendable {
+    private final class Token: Sendable {}
+    private let token = Token()
+    public init() {}
+    public var identity: ObjectIdentifier { ObjectIdentifier(token) }
+    public static func == (_: StorageTag, _: StorageTag) -> Bool { true }
+    public func hash(into hasher: inout Hasher) {}
+  }
 
   /// An empty mesh, for `append`.
   public init() {}
@@ -74,6 +89,7 @@ public struct TriangleMesh<Scalar: RayScalar>: Hashable, Sendable {
   /// Appends `triangle` with three vertices, normals and texture
   /// coordinates of its own, and its own material.
   public mutating func append(_ triangle: Triangle<Scalar>) {
+    storage = StorageTag()
     let previous = count
     if materialIndices.isEmpty && previous > 0 {
       materialIndices = Array(repeating: materialIndex, count: previous)
@@ -165,6 +181,16 @@ public struct TriangleMesh<Scalar: RayScalar>: Hashable, Sendable {
     )
   }
 
+  /// The same triangles, every one of `materialIndex`: the arrays are
+  /// shared, not copied (a mesh file a scene names several times is held
+  /// once).
+  public func withMaterial(_ materialIndex: Int) -> TriangleMesh {
+    var copy = self
+    copy.materialIndex = materialIndex
+    copy.materialIndices = []
+    return copy
+  }
+
   /// Triangle `index`'s material.
   @inline(__always)
   public func material(at index: Int) -> Int {
@@ -231,6 +257,7 @@ extension TriangleMesh {
   /// same operations, so each triangle is the one `moved` gives.
   func moved(by matrix: Matrix4<Scalar>) -> TriangleMesh {
     var moved = self
+    moved.storage = StorageTag()
     moved.vertices = vertices.map { matrix.transformPoint($0) }
     if normalsFollowVertices || !normalIndices.isEmpty {
       let normalMatrix = matrix.withLinearPartNearOne()
@@ -242,6 +269,7 @@ extension TriangleMesh {
   /// Every vertex times `factor`, as `Triangle.scaled(by:)`.
   func scaled(by factor: Scalar) -> TriangleMesh {
     var scaled = self
+    scaled.storage = StorageTag()
     scaled.vertices = vertices.map { $0 * factor }
     return scaled
   }

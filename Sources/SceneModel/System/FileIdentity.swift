@@ -31,4 +31,19 @@ public enum FileIdentity {
     defer { free(resolved) }
     return String(cString: resolved) + "/" + name
   }
+
+  /// A file's identity (device and inode), for keying what was read from
+  /// it; nil when it does not exist.
+  public struct Key: Hashable, Sendable {
+    var device: UInt64
+    var inode: UInt64
+  }
+
+  public static func key(_ path: String) -> Key? {
+    var status = stat()
+    guard stat(path, &status) == 0 else { return nil }
+    return Key(
+      device: UInt64(truncatingIfNeeded: status.st_dev),
+      inode: UInt64(truncatingIfNeeded: status.st_ino))
+  }
 }
