@@ -61,28 +61,50 @@ extension Render {
   static let maximumPixels = 1 << 28
 
   /// Refuses, before anything is allocated, an image whose buffers would
-  /// not fit, saying how much memory it would need.
-  func checkMemory(width: Int, height: Int, outputs: [RenderOutputs])
-    throws
-  {
+  /// not fit: beyond the fixed limits of size, or beyond what the process
+  /// may use (`Memory.limits`), saying how much it would need.
+  func checkMemory(width: Int, height: Int, files: [OutputFile]) throws {
+    let bytes = Double(width) * Double(height) * Self.bytesPerPixel(files)
+    let gib = { (bytes: Double) in
+      "\(formatted(bytes / 1_073_741_824, digits: 3)) GiB"
+    }
     let (pixels, overflow) = width.multipliedReportingOverflow(by: height)
     guard
-      overflow || width > Self.maximumSide || height > Self.maximumSide
-        || pixels > Self.maximumPixels
-    else { return }
-    let all = outputs.reduce(into: RenderOutputs()) { $0.formUnion($1) }
-    let scalar = precision == .float ? 4.0 : 8.0
-    // Raw buffers (t, normal, colour) plus each 8-bit image and its PNG.
-    var perPixel = 0.0
-    if all.contains(.depth) { perPixel += scalar + 6 }
-    if all.contains(.normals) { perPixel += 3 * scalar + 6 }
-    if all.contains(.shaded) { perPixel += 3 * scalar + 6 }
-    let bytes = Double(width) * Double(height) * perPixel
-    throw ValidationError(
-      "--size \(width) \(height) would need about "
-        + "\(formatted(bytes / 1_073_741_824, digits: 3)) GiB "
-        + "of memory; the limit is \(Self.maximumSide) pixels on a side and "
-        + "\(Self.maximumPixels) pixels in all.")
+      !overflow && width <= Self.maximumSide && height <= Self.maximumSide
+        && pixels <= Self.maximumPixels
+    else {
+      throw ValidationError(
+        "--size \(width) \(height) would need about \(gib(bytes)) "
+          + "of memory; the limit is \(Self.maximumSide) pixels on a side and "
+          + "\(Self.maximumPixels) pixels in all.")
+    }
+    // What the program takes before any image: its code, libraries,
+    // threads' stacks (all counted by an address-space limit).
+    let baseline = 384.0 * 1_048_576
+    if let limit = Memory.limits().first, bytes + baseline > Double(limit.bytes) {
+      throw ValidationError(
+        "--size \(width) \(height) would need about \(gib(bytes + baseline)) "
+          + "of memory for these outputs, and the process may use at most "
+          + "\(gib(Double(limit.bytes))) (\(limit.what)).")
+    }
+  }
+
+  /// The memory a pixel takes, at most: the engine's buffers in Double
+  /// (the course engine's, or the fast engine's in its precision) and each
+  /// file as encoded (8-bit pixels and their PNG; raw values as written).
+  static func bytesPerPixel(_ files: [OutputFile]) -> Double {
+    var total = 0.0
+    for file in files {
+      let channels = file.kind == .depth ? 1.0 : 3.0
+      total += 8 * channels
+      switch file.format {
+      case .png: total += 6
+      case .ppm: total += 3
+      case .pfm: total += 4 * channels
+      case .npy: total += 8 * channels
+      }
+    }
+    return total
   }
 
   func checkedRange(_ low: Double, _ high: Double, option: String)

@@ -282,7 +282,7 @@ struct Render: ParsableCommand {
         "--check renders with both engines: drop --engine.")
     }
     try Self.checkDistinct(files, scenePath: scenePath)
-    try checkMemory(width: width, height: height, outputs: files.map(\.kind))
+    try checkMemory(width: width, height: height, files: files)
     if let threads, threads < 1 {
       throw ValidationError("--threads must be at least 1; got \(threads).")
     }

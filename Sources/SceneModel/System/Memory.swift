@@ -65,3 +65,56 @@ extension Platform {
     #endif
   }
 }
+
+extension Memory {
+  /// What the process may use, the smallest limit first: its address-space
+  /// and data-segment limits (`ulimit -v`, `ulimit -d`), its container's
+  /// memory limit (cgroup v2 `memory.max`, or v1 `memory.limit_in_bytes`,
+  /// on Linux), and the machine's memory. Each with the words that name it.
+  public static func limits() -> [(bytes: Int, what: String)] {
+    var result: [(bytes: Int, what: String)] = []
+    func resource(_ kind: Int32, _ what: String) {
+      var limit = rlimit()
+      guard getrlimit(kind, &limit) == 0,
+        limit.rlim_cur < UInt64(Int.max)
+      else { return }
+      result.append((Int(limit.rlim_cur), what))
+    }
+    #if canImport(Glibc)
+      resource(Int32(RLIMIT_AS.rawValue), "its address-space limit (ulimit -v)")
+      resource(Int32(RLIMIT_DATA.rawValue), "its data-segment limit (ulimit -d)")
+    #else
+      resource(RLIMIT_AS, "its address-space limit (ulimit -v)")
+      resource(RLIMIT_DATA, "its data-segment limit (ulimit -d)")
+    #endif
+    #if os(Linux)
+      for file in [
+        "/sys/fs/cgroup/memory.max",
+        "/sys/fs/cgroup/memory/memory.limit_in_bytes",
+      ] {
+        if let bytes = number(inFile: file), bytes < 1 << 60 {
+          result.append((bytes, "its container's memory limit"))
+          break
+        }
+      }
+    #endif
+    let pages = sysconf(Int32(_SC_PHYS_PAGES))
+    let size = sysconf(Int32(_SC_PAGESIZE))
+    if pages > 0, size > 0 {
+      result.append((pages * size, "the machine's memory"))
+    }
+    return result.sorted { $0.bytes < $1.bytes }
+  }
+
+  /// The whole number a small file holds ("max" and anything else: nil).
+  static func number(inFile path: String) -> Int? {
+    let descriptor = open(path, O_RDONLY | O_CLOEXEC)
+    guard descriptor >= 0 else { return nil }
+    defer { close(descriptor) }
+    var buffer = [UInt8](repeating: 0, count: 64)
+    let count = buffer.withUnsafeMutableBytes { read(descriptor, $0.baseAddress, 64) }
+    guard count > 0 else { return nil }
+    let text = String(decoding: buffer[..<count], as: UTF8.self)
+    return Int(text.filter { !$0.isWhitespace })
+  }
+}

@@ -106,4 +106,23 @@ extension OutputSafetyTests {
     XCTAssertTrue(
       outcome.stderr.contains("cannot write to standard output"), outcome.stderr)
   }
+
+  /// An image whose buffers cannot fit in what the process may use (here
+  /// an address-space limit of 1.5 GiB) is refused before anything is
+  /// allocated or created, with what it needs and the limit.
+  func testMemoryLimit_RefusedBeforeAnyWork() throws {
+    let outcome = try run(
+      [
+        "scenes/spheres.txt", "--size", "8192", "8192", "--depth",
+        folder + "/d.npy", "--normals", folder + "/n.npy", "-o",
+        folder + "/c.npy",
+      ], shell: "ulimit -v 1572864;")
+    XCTAssertEqual(outcome.status, 64)
+    XCTAssertTrue(
+      outcome.stderr.contains(
+        "would need about 7.38 GiB of memory for these outputs, and the "
+          + "process may use at most 1.50 GiB (its address-space limit"),
+      outcome.stderr)
+    XCTAssertEqual(files(), [])
+  }
 }

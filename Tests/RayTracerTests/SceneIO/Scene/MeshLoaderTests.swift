@@ -1,0 +1,44 @@
+import Foundation
+import XCTest
+
+@testable import SceneIO
+@testable import SceneModel
+
+/// A mesh file a scene names many times is read once: every use shares
+/// the arrays, each with its own material.
+final class MeshLoaderTests: XCTestCase {
+  func testOneFileNamedThreeTimes_ReadOnce() throws {
+    let folder = NSTemporaryDirectory() + "mesh-loader-\(UUID().uuidString)"
+    try FileManager.default.createDirectory(
+      atPath: folder, withIntermediateDirectories: true)
+    defer { try? FileManager.default.removeItem(atPath: folder) }
+    try "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".write(
+      toFile: folder + "/m.obj", atomically: true, encoding: .utf8)
+    let scene = """
+      PerspectiveCamera { center 0 0 5 direction 0 0 -1 up 0 1 0 angle 30 }
+      Materials { numMaterials 2 PhongMaterial { diffuseColor 1 0 0 }
+        PhongMaterial { diffuseColor 0 1 0 } }
+      Group { numObjects 3
+        MaterialIndex 0 TriangleMesh { obj_file m.obj }
+        MaterialIndex 1 TriangleMesh { obj_file m.obj }
+        Transform { Translate 1 0 0 TriangleMesh { obj_file m.obj } } }
+      """
+    try scene.write(toFile: folder + "/s.txt", atomically: true, encoding: .utf8)
+    let read = try SceneReader.read(
+      contentsOf: folder + "/s.txt", options: SceneOptions(style: .course))
+    var meshes: [TriangleMesh<Double>] = []
+    for object in read.root.objects {
+      switch object {
+      case .mesh(let mesh): meshes.append(mesh)
+      case .transform(let transform):
+        if case .mesh(let mesh) = transform.object { meshes.append(mesh) }
+      default: break
+      }
+    }
+    XCTAssertEqual(meshes.count, 3)
+    XCTAssertEqual(meshes.map(\.materialIndex), [0, 1, 1])
+    let addresses = meshes.map { $0.vertices.withUnsafeBufferPointer { $0.baseAddress } }
+    XCTAssertEqual(Set(addresses).count, 1, "one array of vertices for all")
+    XCTAssertEqual(Set(meshes.map(\.storage.identity)).count, 1)
+  }
+}
