@@ -116,4 +116,35 @@ extension Render {
     }
     return low...high
   }
+
+  /// Whether the folders have room for the files whose size is known
+  /// before rendering (PPM, PFM, NPY: their size is the image's; a PNG's
+  /// is not known, and is not counted): a full disk found now, not after
+  /// the render. Nil when there is room, or the system does not say.
+  static func roomProblem(_ plan: Plan) -> String? {
+    let pixels = plan.settings.width * plan.settings.height
+    var needs: [String: (bytes: Int, example: String)] = [:]
+    for file in plan.files {
+      let channels = file.kind == .depth ? 1 : 3
+      let scalar = plan.settings.precision == .float ? 4 : 8
+      let bytes: Int
+      switch file.format {
+      case .png: continue
+      case .ppm: bytes = 3 * pixels + 32
+      case .pfm: bytes = 4 * channels * pixels + 32
+      case .npy: bytes = scalar * channels * pixels + 128
+      }
+      let slash = file.path.lastIndex(of: "/")
+      let folder = slash.map { String(file.path[...$0]) } ?? "."
+      needs[folder, default: (0, file.path)].bytes += bytes
+    }
+    for (folder, need) in needs.sorted(by: { $0.key < $1.key }) {
+      guard let free = Platform.freeBytes(inFolder: folder), need.bytes > free
+      else { continue }
+      return "cannot write '\(escaped(need.example))': the outputs in its "
+        + "folder need \(need.bytes) bytes, and its file system has "
+        + "\(free) free"
+    }
+    return nil
+  }
 }

@@ -383,6 +383,10 @@ struct Render: ParsableCommand {
       printError("raytrace: error: \(error)")
       throw ExitCode.failure
     }
+    if let problem = Self.roomProblem(plan) {
+      printError("raytrace: error: \(problem)")
+      throw ExitCode.failure
+    }
     var png = PNGOptions.default
     png.compressionLevel = Int32(pngLevel)
     let report: RenderReport

@@ -20,6 +20,16 @@ public enum Platform {
     return limit > 0 ? limit : nil
   }
 
+  /// The bytes an unprivileged process may still write on the file system
+  /// that holds `folder`, or nil when it does not say.
+  public static func freeBytes(inFolder folder: String) -> Int? {
+    var status = statvfs()
+    guard statvfs(folder, &status) == 0 else { return nil }
+    let (bytes, overflow) = Int(status.f_bavail).multipliedReportingOverflow(
+      by: Int(status.f_frsize))
+    return overflow ? nil : bytes
+  }
+
   /// PATH_MAX: the longest path a system call accepts, its final NUL
   /// included (4096 on Linux, 1024 on macOS).
   public static let pathLimit = Int(PATH_MAX)
