@@ -49,7 +49,7 @@ extension Render {
         printOutput("  " + line)
       }
       for line in output.pixel { printOutput("  " + line) }
-      if output.comparison.share < need { failed = true }
+      if !output.passes(need: need) { failed = true }
     }
     if failed { throw ExitCode.failure }
   }

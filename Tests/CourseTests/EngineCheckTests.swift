@@ -110,4 +110,23 @@ final class EngineCheckTests: XCTestCase {
       check(scene, course: course, outputs: [.shaded]).outputs.first)
     XCTAssertEqual(shaded.comparison.pattern, .flippedRows)
   }
+
+  /// A normal turned inside out: the course style's normals image (|n|)
+  /// is the same, yet the check finds the turned normals and says what.
+  func testNormalTurnedInsideOut_Named() throws {
+    let scene = try scene()
+    var course = CourseEngine.render(scene, settings: settings())
+    course.normals = course.normals.map { -$0 }
+    let check = check(scene, course: course, outputs: [.normals]) { hit in
+      var turned = hit
+      turned.normal = -hit.normal
+      return turned
+    }
+    let normals = try XCTUnwrap(check.outputs.first)
+    XCTAssertEqual(normals.comparison.pattern, .identical, "|n| hides it")
+    XCTAssertGreaterThan(normals.turnedNormals, 100)
+    XCTAssertFalse(normals.passes(need: 0.999))
+    let verdict = try XCTUnwrap(normals.pixel.last)
+    XCTAssertTrue(verdict.contains("the normals differ"), verdict)
+  }
 }

@@ -31,6 +31,15 @@ public struct EngineCheck {
     public var name: String
     public var comparison: ImageComparison
     public var pixel: [String]
+    /// For normals: pixels where both engines hit and the raw normals
+    /// point more than 2.6° apart, which an image of |n| can hide (a
+    /// normal turned inside out draws the same |n|).
+    public var turnedNormals = 0
+    /// Whether the output matches: its image within the tolerance on
+    /// `need` of the pixels, and no normal turned.
+    public func passes(need: Double) -> Bool {
+      comparison.share >= need && turnedNormals == 0
+    }
   }
 
   public var outputs: [Output] = []
@@ -67,7 +76,21 @@ public struct EngineCheck {
       let comparison = ImageComparison(
         ReadImage(a), ReadImage(b), tolerance: tolerance)
       var lines: [String] = []
-      if let (column, row) = comparison.first {
+      var turned = 0
+      var firstTurned: (column: Int, row: Int)?
+      if name == "normals" {
+        for index in course.normals.indices
+        where course.depth.indices.contains(index)
+          && course.depth[index].isFinite && fast.depth[index].isFinite
+          && course.normals[index].dot(fast.normals[index]) < 0.999
+        {
+          turned += 1
+          if firstTurned == nil {
+            firstTurned = (index % course.width, index / course.width)
+          }
+        }
+      }
+      if let (column, row) = comparison.first ?? firstTurned {
         let index = row * course.width + column
         let (ray, hits) = probe(column, row)
         let courseFound = Self.nearest(hits, scene: scene)
@@ -77,7 +100,15 @@ public struct EngineCheck {
           column: column, row: row, ray: ray, course: courseFound,
           fast: fastFound)
       }
-      outputs.append(Output(name: name, comparison: comparison, pixel: lines))
+      if turned > 0 {
+        lines.insert(
+          "\(turned) pixels have normals more than 2.6° from the fast "
+            + "engine's, which this image (|n|) may not show", at: 0)
+      }
+      outputs.append(
+        Output(
+          name: name, comparison: comparison, pixel: lines,
+          turnedNormals: turned))
     }
   }
 
