@@ -94,6 +94,17 @@ extension OutputSafetyTests {
       atPath: folder + "/maps")
     XCTAssertEqual(maps.count, 8, "\(maps)")
     XCTAssertTrue(maps.contains("s-2-double-stable.png"), "\(maps)")
+    // A device named as the CSV is written into, never replaced.
+    let null = folder + "/null.csv"
+    XCTAssertEqual(symlink("/dev/null", null), 0)
+    let device = try run([
+      "report", scene, "--size", "8", "8", "--runs", "1", "--rounds", "1",
+      "--skip-antialiasing", "--csv", null,
+    ])
+    XCTAssertEqual(device.status, 0, device.stderr)
+    var status = stat()
+    XCTAssertEqual(stat("/dev/null", &status), 0)
+    XCTAssertEqual(status.st_mode & S_IFMT, S_IFCHR, "/dev/null is a device")
   }
 
   /// A write to standard output that fails is an error, not exit 0.
