@@ -66,6 +66,9 @@ enum MeshLoader {
     _ path: String, materialIndex: Int, textured: Bool, normals: MeshNormals,
     precision: Precision = .double
   ) throws(Failure) -> Loaded {
+    if let problem = MemoryNeed.problem(reading: path, perByte: 6) {
+      throw .atReference(problem)
+    }
     var mesh: OBJMesh
     do {
       mesh = try OBJReader.read(contentsOf: path, precision: precision)

@@ -31,6 +31,9 @@ public enum TextureLoader {
   /// The texture in the BMP file at `path`.
   public static func read(_ path: String) throws(SceneError) -> Texture {
     let file = SceneParser.escaped(path)
+    if let problem = MemoryNeed.problem(reading: path, perByte: 2) {
+      throw SceneError(file: file, line: 0, column: 0, message: problem)
+    }
     let bytes: [UInt8]
     do {
       bytes = try readFile(path)

@@ -41,4 +41,33 @@ final class MeshLoaderTests: XCTestCase {
     XCTAssertEqual(Set(addresses).count, 1, "one array of vertices for all")
     XCTAssertEqual(Set(meshes.map(\.storage.identity)).count, 1)
   }
+
+  /// A mesh file too large for the process's memory (a sparse file of
+  /// 100 GiB) is refused from its size, before anything is read.
+  func testMeshTooLargeForMemory_RefusedBeforeReading() throws {
+    let folder = NSTemporaryDirectory() + "mesh-large-\(UUID().uuidString)"
+    try FileManager.default.createDirectory(
+      atPath: folder, withIntermediateDirectories: true)
+    defer { try? FileManager.default.removeItem(atPath: folder) }
+    let descriptor = open(folder + "/big.obj", O_WRONLY | O_CREAT, 0o644)
+    XCTAssertGreaterThanOrEqual(descriptor, 0)
+    XCTAssertEqual(ftruncate(descriptor, 100 << 30), 0)
+    close(descriptor)
+    let scene = """
+      PerspectiveCamera { center 0 0 5 direction 0 0 -1 up 0 1 0 angle 30 }
+      Group { numObjects 1 TriangleMesh { obj_file big.obj } }
+      """
+    try scene.write(toFile: folder + "/s.txt", atomically: true, encoding: .utf8)
+    let start = Date()
+    XCTAssertThrowsError(
+      try SceneReader.read(
+        contentsOf: folder + "/s.txt", options: SceneOptions(style: .course))
+    ) { error in
+      let message = (error as? SceneError)?.message ?? ""
+      XCTAssertTrue(
+        message.contains("big.obj' would need about 600.0 GiB once read, and the process may use at most"),
+        message)
+    }
+    XCTAssertLessThan(Date().timeIntervalSince(start), 1)
+  }
 }
