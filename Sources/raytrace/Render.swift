@@ -112,7 +112,8 @@ struct Render: ParsableCommand {
       """
         Renderer: course (the default: the course's loop over every object \
         by the hit protocol, Sources/Course) or fast (the same scene within \
-        a stated bound, much faster, exact at any scale).
+        a stated bound, much faster in a release build, exact for spheres \
+        and planes at any scale).
         """,
       valueName: "engine"))
   var engine: Engine?
