@@ -65,7 +65,7 @@ struct Compare: ParsableCommand {
         throw ValidationError(
           "--diff writes an 8-bit image: give it a .png or .ppm name.")
       }
-      guard diff != a && diff != b else {
+      guard !FileIdentity.same(diff, a) && !FileIdentity.same(diff, b) else {
         throw ValidationError("--diff would replace one of the images.")
       }
     }

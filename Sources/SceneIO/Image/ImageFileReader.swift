@@ -46,6 +46,17 @@ public enum ImageFileReader {
   /// The largest side accepted, as for the render's own images.
   public static let maximumSide = 1 << 15
 
+  /// Refuses an image whose values (a Double each) would not fit in what
+  /// the process may use, before they are allocated.
+  static func checkRoom(_ count: Int) throws(Failure) {
+    let bytes = Double(count) * 8
+    guard let limit = Memory.limits().first, bytes > Double(limit.bytes) / 4
+    else { return }
+    throw Failure(
+      "its \(count) values would need \(Int(bytes / 1_048_576)) MiB, more "
+        + "than a quarter of what the process may use (\(limit.what))")
+  }
+
   /// The image in the file at `path` (a regular file, read whole).
   public static func read(contentsOf path: String) throws(Failure)
     -> ReadImage
@@ -126,6 +137,7 @@ public enum ImageFileReader {
     guard bytes.count - data >= count else {
       throw Failure("it holds \(bytes.count - data) bytes of pixels, not \(count)")
     }
+    try checkRoom(count)
     return ReadImage(
       width: width, height: height, channels: 3,
       values: bytes[data..<data + count].map(Double.init), isEightBit: true)
@@ -145,6 +157,7 @@ public enum ImageFileReader {
       throw Failure(
         "it holds \(bytes.count - data) bytes of values, not \(4 * count)")
     }
+    try checkRoom(count)
     var values = [Double](repeating: 0, count: count)
     for row in 0..<height {
       for index in 0..<width * channels {
@@ -211,6 +224,7 @@ public enum ImageFileReader {
         "it holds \(bytes.count - data) bytes of values, not "
           + "\(bytesPerValue * count)")
     }
+    try checkRoom(count)
     var values = [Double](repeating: 0, count: count)
     for index in 0..<count {
       var bits: UInt64 = 0

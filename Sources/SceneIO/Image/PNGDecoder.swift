@@ -63,6 +63,20 @@ public enum PNGDecoder {
     guard width > 0, height > 0, channels > 0 else {
       throw Failure(description: "missing or empty IHDR")
     }
+    // Sizes a file may claim are checked before anything is allocated: at
+    // most 32768 a side, and what decoding takes (the filtered rows, the
+    // pixels, the RGB copy) within half of what the process may use.
+    guard width <= 1 << 15, height <= 1 << 15 else {
+      throw Failure(
+        description: "its size \(width)×\(height) is beyond 32768 a side")
+    }
+    let need = Double(width) * Double(height) * Double(2 * channels + 3)
+    if let limit = Memory.limits().first, need > Double(limit.bytes) / 2 {
+      throw Failure(
+        description: "its \(width)×\(height) pixels would need "
+          + "\(Int(need / 1_048_576)) MiB to decode, more than half of what "
+          + "the process may use (\(limit.what))")
+    }
     let stride = width * channels
     var raw = [UInt8](repeating: 0, count: height * (stride + 1))
     var rawLength = uLongf(raw.count)

@@ -43,6 +43,12 @@ extension CommandLineTests {
       missing.stderr)
     let usage = try run(["compare", folder + "/a.ppm", folder + "/b.ppm", "--need", "120"])
     XCTAssertEqual(usage.status, 64)
+    let over = try run([
+      "compare", folder + "/a.ppm", folder + "/b.ppm", "--diff",
+      folder + "/./a.ppm",
+    ])
+    XCTAssertEqual(over.status, 64, "--diff over an image, however spelt")
+    XCTAssertEqual(try read("a.ppm").count, 48 + 11)
   }
 
   func testCheck_TheEnginesAgreeOnAProjectScene() throws {

@@ -64,5 +64,21 @@ final class ImageFileReaderTests: XCTestCase {
       RawImage<Double>(width: 2, height: 2, channels: 1, values: [1, 2, 3, 4]))
     npy.removeLast(8)
     XCTAssertEqual(reason(npy), "it holds 24 bytes of values, not 32")
+    // A PNG header claiming 2³²−1 pixels a side: refused before anything
+    // is allocated (its row size overflowed, a trap).
+    var header: [UInt8] = []
+    for value: UInt32 in [0xFFFF_FFFF, 0xFFFF_FFFF] {
+      header += withUnsafeBytes(of: value.bigEndian, Array.init)
+    }
+    header += [8, 2, 0, 0, 0]
+    var png = PNGEncoder.encode(Image8(width: 1, height: 1, bytes: [1, 2, 3]))
+    // Replace the IHDR's data and its CRC (bytes 16..<29, then 29..<33).
+    png.replaceSubrange(16..<29, with: header)
+    let crc = PNGEncoder.crc32(Array("IHDR".utf8) + header)
+    png.replaceSubrange(29..<33, with: withUnsafeBytes(of: crc.bigEndian, Array.init))
+    XCTAssertEqual(
+      reason(png),
+      "not a PNG file it can read: its size 4294967295×4294967295 is beyond "
+        + "32768 a side")
   }
 }
