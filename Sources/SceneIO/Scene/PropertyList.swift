@@ -1,10 +1,6 @@
 import SceneModel
 
-#if canImport(FoundationEssentials)
-  import FoundationEssentials
-#else
-  import Foundation
-#endif
+import Foundation
 
 /// A property list read by the toolchain's Foundation decoder (XML or
 /// binary, on Linux and macOS alike), as a tree of values.
@@ -21,6 +17,31 @@ enum PropertyList: Decodable, Sendable {
   /// decoder recurses once per level, and no scene needs more than a few
   /// levels per group (`SceneParser.maximumGroupDepth` groups deep).
   static let maximumDepth = 4 * SceneParser.maximumGroupDepth + 16
+
+  /// The tree of what Foundation's reader returns: strings, numbers,
+  /// booleans, arrays and dictionaries (with string keys); anything else,
+  /// data or a date, is `other`.
+  init(_ value: Any) {
+    switch value {
+    case let string as String:
+      self = .string(string)
+    case let number as NSNumber:
+      // A boolean is a Bool, or (on macOS) an NSNumber of a char's type.
+      if type(of: value) == Bool.self
+        || String(cString: number.objCType) == "c"
+      {
+        self = .boolean(number.boolValue)
+      } else {
+        self = .number(number.doubleValue)
+      }
+    case let array as [Any]:
+      self = .array(array.map(PropertyList.init))
+    case let dictionary as [String: Any]:
+      self = .dictionary(dictionary.mapValues(PropertyList.init))
+    default:
+      self = .other
+    }
+  }
 
   init(from decoder: any Decoder) throws {
     let container = try decoder.singleValueContainer()
@@ -151,8 +172,12 @@ enum PropertyList: Decodable, Sendable {
       decodable = declaringUTF8(utf8)
     }
     do {
-      return try PropertyListDecoder().decode(
-        PropertyList.self, from: Data(decodable))
+      // The untyped reader: the typed decoder (`Decodable`) builds a
+      // coding path for every value it tries, and took a hundred times as
+      // long on deep lists (its retains and releases were 80 % of a run).
+      let value = try PropertyListSerialization.propertyList(
+        from: Data(decodable), options: [], format: nil)
+      return PropertyList(value)
     } catch {
       let (line, reason) = describe(error)
       throw SceneError(

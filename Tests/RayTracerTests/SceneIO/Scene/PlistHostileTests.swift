@@ -181,4 +181,21 @@ final class PlistHostileTests: XCTestCase {
       "h.plist: error: not a valid property list: its text is not valid in "
         + "the encoding its byte-order mark names")
   }
+
+  /// Values of every kind keep their kind: a boolean is not read as a
+  /// number, an integer or a real is a number, data and dates are other.
+  func testValueKinds() {
+    func message(_ value: String) -> String {
+      self.message(
+        Array(
+          ("<?xml version=\"1.0\"?>\n<plist><dict><key>Camera</key>\(value)"
+            + "</dict></plist>").utf8))
+    }
+    XCTAssertTrue(message("<true/>").hasSuffix("found a boolean"), message("<true/>"))
+    XCTAssertTrue(message("<integer>3</integer>").hasSuffix("found a number"))
+    XCTAssertTrue(message("<real>2.5</real>").hasSuffix("found a number"))
+    XCTAssertTrue(message("<data>AAAA</data>").hasSuffix("found data or a date"))
+    XCTAssertTrue(message("<string>x</string>").hasSuffix("found the string \"x\""))
+    XCTAssertTrue(message("<array/>").hasSuffix("found an array"))
+  }
 }
