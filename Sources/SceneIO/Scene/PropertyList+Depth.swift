@@ -12,7 +12,16 @@ extension PropertyList {
     let tooDeep =
       "the property list is nested more than \(maximumDepth) levels deep"
     if bytes.starts(with: Array("bplist".utf8)) {
-      switch binaryShape(bytes) {
+      let shape: (depth: Int, visits: Int)?
+      switch binaryReading(bytes) {
+      case .shape(let depth, let visits): shape = (depth, visits)
+      case .unsupported(let reason):
+        throw SceneError(
+          file: file, line: 0, column: 0,
+          message: "not a valid property list: \(reason)")
+      case .malformed: shape = nil
+      }
+      switch shape {
       case .some(let shape) where shape.depth > maximumDepth:
         throw SceneError(file: file, line: 0, column: 0, message: tooDeep)
       case .some(let shape) where shape.visits > maximumVisits(forSize: bytes.count):
@@ -67,6 +76,33 @@ extension PropertyList {
   /// stack or time beyond one visit of each reference; every size is
   /// checked before it is multiplied, so no count a file claims overflows.
   static func binaryShape(_ bytes: [UInt8]) -> (depth: Int, visits: Int)? {
+    switch binaryReading(bytes) {
+    case .shape(let depth, let visits): (depth, visits)
+    case .unsupported, .malformed: nil
+    }
+  }
+
+  /// What the check of a binary list finds.
+  enum BinaryReading: Equatable {
+    case shape(depth: Int, visits: Int)
+    /// Well formed, but holding what no scene holds and Foundation's
+    /// reader does not survive on Linux: a set, or a dictionary key that
+    /// is not a string (bridging either to Swift crashed it).
+    case unsupported(String)
+    case malformed
+  }
+
+  /// `binaryShape`, and why a list is refused.
+  static func binaryReading(_ bytes: [UInt8]) -> BinaryReading {
+    var unsupported: String?
+    guard let shape = binaryShapeChecking(bytes, unsupported: &unsupported)
+    else { return unsupported.map { .unsupported($0) } ?? .malformed }
+    return .shape(depth: shape.depth, visits: shape.visits)
+  }
+
+  private static func binaryShapeChecking(
+    _ bytes: [UInt8], unsupported: inout String?
+  ) -> (depth: Int, visits: Int)? {
     let count = bytes.count
     guard count >= 8 + 32 else { return nil }
     func integer(_ offset: Int, _ size: Int) -> Int? {
@@ -95,7 +131,11 @@ extension PropertyList {
       else { return nil }
       let marker = bytes[offset]
       let kind = marker >> 4
-      guard kind == 0xA || kind == 0xC || kind == 0xD else { return [] }
+      if kind == 0xC {
+        unsupported = "it holds a set, which no scene holds"
+        return nil
+      }
+      guard kind == 0xA || kind == 0xD else { return [] }
       var length = Int(marker & 0x0F)
       var start = offset + 1
       if length == 0x0F {
@@ -118,6 +158,19 @@ extension PropertyList {
             start + index * referenceSize, referenceSize),
           reference < objects
         else { return nil }
+        // A dictionary's keys (its first `length` references) are strings.
+        if kind == 0xD && index < length {
+          guard
+            let keyOffset = integer(
+              table + reference * offsetSize, offsetSize),
+            keyOffset < count
+          else { return nil }
+          let keyKind = bytes[keyOffset] >> 4
+          guard keyKind == 0x5 || keyKind == 0x6 else {
+            unsupported = "a dictionary has a key that is not a string"
+            return nil
+          }
+        }
         result.append(reference)
       }
       return result

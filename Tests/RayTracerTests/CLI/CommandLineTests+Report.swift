@@ -13,4 +13,23 @@ extension CommandLineTests {
       outcome.stdout.contains("| single-sphere.plist | double | stable |"),
       outcome.stdout)
   }
+
+  /// A default render that takes more than 2 s says, in one line, that the
+  /// fast engine exists; a fast one, or one that names its engine, does
+  /// not.
+  func testSlowDefaultRender_NamesTheFastEngine() throws {
+    try skipUnlessLongTests()
+    let slow = try run([
+      "scenes/spheres.txt", "--size", "3000", "3000", "--threads", "1",
+      "--depth", folder + "/d.png",
+    ])
+    XCTAssertEqual(slow.status, 0, slow.stderr)
+    XCTAssertTrue(
+      slow.stderr.contains("the course engine took")
+        && slow.stderr.contains("--engine fast"), slow.stderr)
+    let quick = try run([
+      "scenes/spheres.txt", "--size", "40", "40", "--depth", folder + "/e.png",
+    ])
+    XCTAssertFalse(quick.stderr.contains("--engine fast"), quick.stderr)
+  }
 }

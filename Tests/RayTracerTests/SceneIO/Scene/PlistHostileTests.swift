@@ -198,4 +198,39 @@ final class PlistHostileTests: XCTestCase {
     XCTAssertTrue(message("<string>x</string>").hasSuffix("found the string \"x\""))
     XCTAssertTrue(message("<array/>").hasSuffix("found an array"))
   }
+
+  /// Found by the fuzzer: a binary list holding a set made Foundation's
+  /// reader crash in its bridging (SIGSEGV); so would a dictionary with a
+  /// key that is not a string. Both are refused before it sees them.
+  func testBinary_SetsAndKeysThatAreNotStrings() {
+    func list(_ objects: [[UInt8]]) -> [UInt8] {
+      var bytes = Array("bplist00".utf8)
+      var offsets: [UInt8] = []
+      for object in objects {
+        offsets.append(UInt8(bytes.count))
+        bytes += object
+      }
+      let table = bytes.count
+      return bytes + offsets + trailer(objects: objects.count, tableOffset: table)
+    }
+    // A set of two arrays.
+    let set = list([[0xC2, 1, 2], [0xA0], [0xA0]])
+    XCTAssertEqual(
+      message(set),
+      "h.plist: error: not a valid property list: it holds a set, which no "
+        + "scene holds")
+    // A dictionary whose key is an array.
+    let key = list([[0xD1, 1, 2], [0xA0], [0x51, UInt8(ascii: "x")]])
+    XCTAssertEqual(
+      message(key),
+      "h.plist: error: not a valid property list: a dictionary has a key "
+        + "that is not a string")
+    // The fuzzer's own input replays to one line.
+    let finding = "\(projectFolder)/Fuzz/corpus/plist/finding-set-bridging"
+    let bytes = (try? Data(contentsOf: URL(fileURLWithPath: finding))).map(Array.init) ?? []
+    XCTAssertFalse(bytes.isEmpty)
+    XCTAssertTrue(message(bytes).hasPrefix("h.plist: error: "), message(bytes))
+  }
 }
+
+private let projectFolder = ProjectFiles.projectFolder
