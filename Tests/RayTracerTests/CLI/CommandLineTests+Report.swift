@@ -20,7 +20,7 @@ extension CommandLineTests {
   func testSlowDefaultRender_NamesTheFastEngine() throws {
     try skipUnlessLongTests()
     let slow = try run([
-      "scenes/spheres.txt", "--size", "3000", "3000", "--threads", "1",
+      "scenes/spheres.txt", "--size", "4000", "4000", "--threads", "1",
       "--depth", folder + "/d.png",
     ])
     XCTAssertEqual(slow.status, 0, slow.stderr)
