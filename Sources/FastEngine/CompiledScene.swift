@@ -359,43 +359,6 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     if !shapes.isEmpty { testShapes(ray, &nearest) }
   }
 
-  /// Offers the hits of the other shapes to `nearest`, in order: each is
-  /// asked, in Double and in the world's units, for a hit strictly before
-  /// the best so far, when the ray meets its box.
-  func testShapes(
-    _ ray: CameraRay<Scalar>, _ nearest: inout NearestHit<Scalar, Nearest>
-  ) {
-    let world = shapeRay(ray)
-    let reciprocal = Vector3(
-      1 / world.direction.x, 1 / world.direction.y, 1 / world.direction.z)
-    let scale = Double(lengthScale)
-    for index in shapes.indices {
-      nearest.test(.shape(index)) { before in
-        let tMax = Double(before) * scale
-        if let box = shapeBoxes[index],
-          !box.isHit(by: world, reciprocal: reciprocal, after: 0, before: tMax)
-        {
-          return nil
-        }
-        guard
-          let hit = shapes[index].intersect(world, after: 0, before: tMax)
-        else { return nil }
-        let t = Scalar(hit.t / scale)
-        return t > 0 && t < before ? t : nil
-      }
-    }
-  }
-
-  /// A camera ray as the shapes see it: from the eye in the world.
-  func shapeRay(_ ray: CameraRay<Scalar>) -> Ray<Double> {
-    Ray(origin: shapeEye, direction: Vector3<Double>(ray.direction))
-  }
-
-  /// The hit of shape `index` found by `testShapes`: its nearest.
-  func shapeHit(_ index: Int, _ ray: CameraRay<Scalar>) -> Hit<Double>? {
-    shapes[index].intersect(shapeRay(ray), after: 0, before: .infinity)
-  }
-
   /// The unit normal of the hit `what` at `t`; for a triangle, from the
   /// barycentric `weights` of its test when given (`TriangleWeights`).
   func normal(
