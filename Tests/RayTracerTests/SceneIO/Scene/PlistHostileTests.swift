@@ -28,6 +28,19 @@ final class PlistHostileTests: XCTestCase {
     return bytes
   }
 
+  /// A binary list of `objects`, the first the top, with one-byte offsets
+  /// and references.
+  func list(_ objects: [[UInt8]]) -> [UInt8] {
+    var bytes = Array("bplist00".utf8)
+    var offsets: [UInt8] = []
+    for object in objects {
+      offsets.append(UInt8(bytes.count))
+      bytes += object
+    }
+    let table = bytes.count
+    return bytes + offsets + trailer(objects: objects.count, tableOffset: table)
+  }
+
   /// A dictionary claiming 2⁶² entries: the count is refused before it is
   /// doubled into keys and values (it overflowed, a trap).
   func testBinary_CountOfTwoToTheSixtyTwo() {
@@ -46,14 +59,7 @@ final class PlistHostileTests: XCTestCase {
   func testBinary_SharedReferencesExpandingExponentially() {
     var objects: [[UInt8]] = (0..<60).map { [0xA2, UInt8($0 + 1), UInt8($0 + 1)] }
     objects.append([0x51, UInt8(ascii: "x")])
-    var bytes = Array("bplist00".utf8)
-    var offsets: [UInt8] = []
-    for object in objects {
-      offsets.append(UInt8(bytes.count))
-      bytes += object
-    }
-    let table = bytes.count
-    bytes += offsets + trailer(objects: objects.count, tableOffset: table)
+    let bytes = list(objects)
     let start = Date()
     XCTAssertTrue(
       message(bytes).hasSuffix(
@@ -203,16 +209,6 @@ final class PlistHostileTests: XCTestCase {
   /// reader crash in its bridging (SIGSEGV); so would a dictionary with a
   /// key that is not a string. Both are refused before it sees them.
   func testBinary_SetsAndKeysThatAreNotStrings() {
-    func list(_ objects: [[UInt8]]) -> [UInt8] {
-      var bytes = Array("bplist00".utf8)
-      var offsets: [UInt8] = []
-      for object in objects {
-        offsets.append(UInt8(bytes.count))
-        bytes += object
-      }
-      let table = bytes.count
-      return bytes + offsets + trailer(objects: objects.count, tableOffset: table)
-    }
     // A set of two arrays.
     let set = list([[0xC2, 1, 2], [0xA0], [0xA0]])
     XCTAssertEqual(
