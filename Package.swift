@@ -2,7 +2,7 @@
 import Foundation
 import PackageDescription
 
-// Two packages, in one of two forms (README.md, "Packages"):
+// Two packages, in one of two forms (docs/PORTABILITY.md, "Packages"):
 //
 // - By default, two targets stand in for them, built with no network:
 //   Sources/ArgumentParser copies the names of swift-argument-parser's

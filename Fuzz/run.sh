@@ -49,7 +49,7 @@
 #                       finite colours of every hit (see the harness)
 #   SWIFTC              the compiler (default: swiftc on PATH)
 #   RAYTRACE_PACKAGES, RAYTRACE_ARGUMENT_PARSER_PATH, RAYTRACE_NUMERICS_PATH
-#                       as for Package.swift (README.md, "Packages"): the
+#                       as for Package.swift (docs/PORTABILITY.md, "Packages"): the
 #                       real swift-argument-parser and swift-numerics
 #                       instead of the stand-ins, their modules compiled
 #                       from the local checkouts or, for 'apple', from

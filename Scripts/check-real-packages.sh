@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Checks that raytrace built against the real packages behaves as the build
-# with the stand-ins does (README.md, "Packages"):
+# with the stand-ins does (docs/PORTABILITY.md, "Packages"):
 #
 #   Scripts/check-real-packages.sh ARGPARSER_CHECKOUT NUMERICS_CHECKOUT
 #
@@ -56,7 +56,7 @@ fi
 
 # One command line a line; words split at spaces, OUT for the output folder.
 # Left out on purpose: report and bench runs (their timings differ from
-# run to run) and the stand-in's deliberate differences (README.md,
+# run to run) and the stand-in's deliberate differences (docs/PORTABILITY.md,
 # "Packages"): completion scripts, help wrapped to the terminal, and an
 # unknown single-dash word such as `-outptu`, which the real package splits
 # into short options (`-o` then takes the next value; `-u` is unknown).
