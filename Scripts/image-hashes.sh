@@ -25,7 +25,13 @@ render() {
   local label=$1; shift
   "$binary" "$@" --engine fast -o "$out/s.ppm" --depth "$out/d.pfm" \
     --normals "$out/n.pfm" 2>/dev/null || { echo "failed  $label"; return; }
-  echo "$(cat "$out/s.ppm" "$out/d.pfm" "$out/n.pfm" | sha256sum | cut -c1-16)  $label"
+  # One hash per output, so that a diff says which changed (a change may
+  # move depth values in their last bits and leave the images alone).
+  local h=()
+  for file in s.ppm d.pfm n.pfm; do
+    h+=("$(sha256sum < "$out/$file" | cut -c1-12)")
+  done
+  echo "shaded ${h[0]} depth ${h[1]} normals ${h[2]}  $label"
 }
 
 for scene in "${scenes[@]}"; do
