@@ -16,6 +16,9 @@ extension CompiledScene {
   /// hierarchy is built over those).
   mutating func appendLargeTriangles(_ large: [LargeTriangle]) {
     ordinaryTriangleCount = triangles.count
+    if !exactPlaneIndices.isEmpty {
+      exactPlaneIndices += repeatElement(-1, count: large.count)
+    }
     for (record, shading, plane) in large {
       appendTriangle(record, shading)
       trianglePlanes.append(plane)
@@ -45,10 +48,9 @@ extension CompiledScene {
 /// A large triangle's plane seen from the eye (`TrianglePlane`), as its
 /// test reads it.
 struct LargeTrianglePlane<Scalar: RayScalar>: Sendable {
-  var normal: Vector3<Scalar>
-  var distance: Scalar
-  /// `PlaneIntersection.isAxisAligned(normal)`, found once.
-  var isAxisAligned: Bool
+  /// The plane, known beyond the render's precision
+  /// (`TrianglePlane.exact`).
+  var plane: TrianglePlane.Exact<Scalar>
   /// Whether the watertight test's edge functions alone decide the hit
   /// (`TriangleIntersection.covers`), without the t the plane replaces:
   /// when every vertex coordinate relative to the eye is at most
@@ -63,15 +65,13 @@ struct LargeTrianglePlane<Scalar: RayScalar>: Sendable {
   /// `LengthScale`'s window) the whole test runs as before.
   var edgesDecide: Bool
 
-  /// `plane` of `TrianglePlane.make` for a triangle whose vertices
-  /// relative to the eye are `relative`.
+  /// `plane` for a triangle whose vertices relative to the eye are
+  /// `relative`.
   init(
-    _ plane: (normal: Vector3<Scalar>, distance: Scalar),
+    _ plane: TrianglePlane.Exact<Scalar>,
     relative: (Vector3<Scalar>, Vector3<Scalar>, Vector3<Scalar>)
   ) {
-    normal = plane.normal
-    distance = plane.distance
-    isAxisAligned = PlaneIntersection.isAxisAligned(plane.normal)
+    self.plane = plane
     let extent = Swift.max(
       relative.0.maxMagnitude, relative.1.maxMagnitude,
       relative.2.maxMagnitude)

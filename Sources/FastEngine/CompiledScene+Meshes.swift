@@ -62,19 +62,51 @@ extension CompiledScene {
                 TextureCoordinate(mesh.textureCoordinates[$0.2]))
             })
         let relative = (record.v0, record.v1, record.v2)
+        let vertices = (mesh.vertices[a], mesh.vertices[b], mesh.vertices[c])
         if cameraRelative,
           let plane = TrianglePlane.make(
-            relative: relative, normal: normal, v0: mesh.vertices[a],
-            origin: eye)
+            relative: relative, normal: normal, v0: vertices.0, origin: eye)
         {
+          let exact =
+            TrianglePlane.exact(
+              vertices.0, vertices.1, vertices.2, origin: eye, as: Scalar.self)
+            ?? TrianglePlane.Exact(
+              normal: plane.normal, normalTail: .zero,
+              distance: plane.distance,
+              isAxisAligned: PlaneIntersection.isAxisAligned(plane.normal))
           large.append(
-            (record, shading, LargeTrianglePlane(plane, relative: relative)))
+            (record, shading, LargeTrianglePlane(exact, relative: relative)))
           continue
         }
         appendTriangle(record, shading)
+        if cameraRelative {
+          appendExactPlane(relative: relative, vertices: vertices, eye: eye)
+        }
       }
     }
     return large
+  }
+
+  /// Records the exact plane of the triangle just appended when its
+  /// watertight t would lose digits (`TrianglePlane.needsExactT`), else
+  /// −1 once some earlier triangle has one.
+  mutating func appendExactPlane(
+    relative: (Vector3<Scalar>, Vector3<Scalar>, Vector3<Scalar>),
+    vertices: (Vector3<Double>, Vector3<Double>, Vector3<Double>),
+    eye: Vector3<Double>
+  ) {
+    if TrianglePlane.needsExactT(relative: relative),
+      let plane = TrianglePlane.exact(
+        vertices.0, vertices.1, vertices.2, origin: eye, as: Scalar.self)
+    {
+      if exactPlaneIndices.isEmpty {
+        exactPlaneIndices = Array(repeating: -1, count: triangles.count - 1)
+      }
+      exactPlaneIndices.append(Int32(truncatingIfNeeded: exactPlanes.count))
+      exactPlanes.append(plane)
+    } else if !exactPlaneIndices.isEmpty {
+      exactPlaneIndices.append(-1)
+    }
   }
 
   /// `point` in the kernel's frame: relative to the eye, compensated and

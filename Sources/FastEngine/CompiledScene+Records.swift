@@ -27,10 +27,7 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
   func barycentrics(
     of ray: CameraRay<Scalar>
   ) -> (u: Scalar, v: Scalar, w: Scalar)? {
-    let prepared = WatertightRay(
-      Ray(origin: ray.origin, direction: ray.direction))
-    guard let hit = intersect(prepared, before: .infinity) else { return nil }
-    return (hit.u, hit.v, hit.w)
+    weights(WatertightRay(Ray(origin: ray.origin, direction: ray.direction)))
   }
 
   @inline(__always)
@@ -38,6 +35,30 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
     _ ray: WatertightRay<Scalar>, before tMax: Scalar
   ) -> (t: Scalar, u: Scalar, v: Scalar, w: Scalar)? {
     TriangleIntersection.intersect(ray, v0, v1, v2, after: 0, before: tMax)
+  }
+
+  /// `intersect` with t from the triangle's exact plane
+  /// (`TrianglePlane.Exact`): the same hits on the line, the same
+  /// barycentrics.
+  @inline(__always)
+  func intersect(
+    _ ray: WatertightRay<Scalar>, plane: TrianglePlane.Exact<Scalar>,
+    before tMax: Scalar
+  ) -> (t: Scalar, u: Scalar, v: Scalar, w: Scalar)? {
+    TriangleIntersection.intersect(
+      ray, PermutedTriangle(ray, v0, v1, v2), plane: plane, after: 0,
+      before: tMax)
+  }
+
+  /// The barycentrics of the watertight test on the ray's whole line: a
+  /// hit found in (0, t) has the same weights on the line, and a triangle
+  /// whose t comes from its plane has them even where the watertight t,
+  /// which it replaces, strayed below 0.
+  @inline(__always)
+  func weights(_ ray: WatertightRay<Scalar>) -> (u: Scalar, v: Scalar, w: Scalar)? {
+    TriangleIntersection.intersect(
+      ray, v0, v1, v2, after: -.infinity, before: .infinity
+    ).map { ($0.u, $0.v, $0.w) }
   }
 
   /// The t of a triangle much larger than its distance from the eye, for
@@ -53,10 +74,7 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
     plane: LargeTrianglePlane<Scalar>, before tMax: Scalar
   ) -> Scalar? {
     guard
-      let t = TrianglePlane.t(
-        normal: plane.normal, distance: plane.distance,
-        isAxisAligned: plane.isAxisAligned, direction: ray.direction,
-        after: 0, before: tMax)
+      let t = plane.plane.t(direction: ray.direction, after: 0, before: tMax)
     else { return nil }
     let (v0, v1, v2) = (
       record.pointee.v0, record.pointee.v1, record.pointee.v2
@@ -78,9 +96,7 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
     // The geometric normal only where it is the answer: found again from
     // the vertices, it is not stored beside them.
     guard let normals else { return geometricNormal ?? .zero }
-    let prepared = WatertightRay(
-      Ray(origin: ray.origin, direction: ray.direction))
-    guard let hit = intersect(prepared, before: .infinity) else {
+    guard let hit = barycentrics(of: ray) else {
       return geometricNormal ?? .zero
     }
     return normal(
@@ -120,6 +136,25 @@ struct TriangleLeaves<Scalar: RayScalar>: LeafPrimitives {
   @inline(__always)
   func intersect(_ position: Int, before tMax: Scalar) -> Scalar? {
     records[position].intersect(ray, before: tMax)?.t
+  }
+}
+
+/// Triangles tested against one prepared ray, for the hierarchy of a scene
+/// where some take t from their exact planes (`exactPlaneIndices`).
+struct PlanedTriangleLeaves<Scalar: RayScalar>: LeafPrimitives {
+  let records: UnsafeBufferPointer<TriangleRecord<Scalar>>
+  let planeIndices: UnsafeBufferPointer<Int32>
+  let planes: UnsafeBufferPointer<TrianglePlane.Exact<Scalar>>
+  let ray: WatertightRay<Scalar>
+
+  @inline(__always)
+  func intersect(_ position: Int, before tMax: Scalar) -> Scalar? {
+    let plane = planeIndices[position]
+    guard plane >= 0 else {
+      return records[position].intersect(ray, before: tMax)?.t
+    }
+    return records[position].intersect(
+      ray, plane: planes[Int(plane)], before: tMax)?.t
   }
 }
 

@@ -35,6 +35,7 @@ extension CompiledScene {
     bvh.arrange(&triangles)
     bvh.arrange(&triangleMaterials)
     bvh.arrange(&triangleNormalIndices)
+    if !exactPlaneIndices.isEmpty { bvh.arrange(&exactPlaneIndices) }
     if !triangleTextureCoordinates.isEmpty {
       bvh.arrange(&triangleTextureCoordinates)
     }
@@ -90,6 +91,10 @@ extension CompiledScene {
     _ ray: CameraRay<Scalar>, _ prepared: WatertightRay<Scalar>,
     _ nearest: inout NearestHit<Scalar, Nearest>
   ) {
+    guard exactPlaneIndices.isEmpty else {
+      testPlanedTriangles(ray, prepared, &nearest)
+      return
+    }
     triangles.withUnsafeBufferPointer { records in
       if let triangleHierarchy {
         let leaves = TriangleLeaves(records: records, ray: prepared)
@@ -107,5 +112,46 @@ extension CompiledScene {
         }
       }
     }
+  }
+
+  /// `testOrdinaryTriangles` for a scene where some ordinary triangles take
+  /// t from their exact planes.
+  @inline(never)
+  func testPlanedTriangles(
+    _ ray: CameraRay<Scalar>, _ prepared: WatertightRay<Scalar>,
+    _ nearest: inout NearestHit<Scalar, Nearest>
+  ) {
+    triangles.withUnsafeBufferPointer { records in
+      exactPlaneIndices.withUnsafeBufferPointer { indices in
+        exactPlanes.withUnsafeBufferPointer { planes in
+          let leaves = PlanedTriangleLeaves(
+            records: records, planeIndices: indices, planes: planes,
+            ray: prepared)
+          if let triangleHierarchy {
+            if let hit = triangleHierarchy.nearest(
+              ray, before: nearest.t, leaves: leaves,
+              wide: wideTriangleHierarchy)
+            {
+              nearest.test(.triangle(hit.index)) { _ in hit.t }
+            }
+          } else {
+            for index in 0..<ordinaryTriangleCount {
+              nearest.test(.triangle(index)) {
+                leaves.intersect(index, before: $0)
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+
+  /// The exact plane of ordinary triangle `index`, when its t comes from
+  /// one.
+  @inline(__always)
+  func exactPlane(ofTriangle index: Int) -> TrianglePlane.Exact<Scalar>? {
+    guard index < exactPlaneIndices.count else { return nil }
+    let plane = exactPlaneIndices[index]
+    return plane >= 0 ? exactPlanes[Int(plane)] : nil
   }
 }

@@ -51,6 +51,13 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   var ordinaryTriangleCount = 0
   /// Per large triangle, in order, its plane seen from the eye.
   var trianglePlanes: [LargeTrianglePlane<Scalar>] = []
+  /// Per ordinary triangle, the index in `exactPlanes` of the plane its t
+  /// comes from, or −1 for the watertight test's t; empty when no
+  /// ordinary triangle is thin or large enough to need one
+  /// (`TrianglePlane.needsExactT`), so that such scenes search as before.
+  var exactPlaneIndices: [Int32] = []
+  /// The exact planes of the ordinary triangles that need them.
+  var exactPlanes: [TrianglePlane.Exact<Scalar>] = []
   /// Triangles left in order for `ScreenTiles` to project, without a
   /// hierarchy (see `triangleProjectionThreshold`).
   var projectsTriangles = false

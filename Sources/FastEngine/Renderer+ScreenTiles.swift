@@ -112,6 +112,7 @@ extension Renderer {
     _ entry: ScreenTiles<Kernel>.TriangleEntry, _ index: Int,
     _ records: UnsafeBufferPointer<TriangleRecord<Kernel.Scalar>>,
     plane: LargeTrianglePlane<Kernel.Scalar>?,
+    exact: TrianglePlane.Exact<Kernel.Scalar>?,
     sides: TriangleEdgePlanes<Kernel.Scalar>?,
     sharedFrame: Bool,
     rays: UnsafeMutableBufferPointer<CameraRay<Kernel.Scalar>>,
@@ -144,10 +145,15 @@ extension Renderer {
         record.v0, record.v1, record.v2)
       eachRay { slot in
         searches[slot].test(.triangle(index)) {
-          guard
-            let hit = TriangleIntersection.intersect(
-              prepared[slot], permuted, after: 0, before: $0)
-          else { return nil }
+          let found =
+            if let exact {
+              TriangleIntersection.intersect(
+                prepared[slot], permuted, plane: exact, after: 0, before: $0)
+            } else {
+              TriangleIntersection.intersect(
+                prepared[slot], permuted, after: 0, before: $0)
+            }
+          guard let hit = found else { return nil }
           weights[slot] = TriangleWeights(u: hit.u, v: hit.v, w: hit.w)
           return hit.t
         }
@@ -161,8 +167,13 @@ extension Renderer {
             prepared[slot], records.baseAddress! + index,
             plane: plane, before: $0)
         }
-        guard let hit = record.intersect(prepared[slot], before: $0)
-        else { return nil }
+        let found =
+          if let exact {
+            record.intersect(prepared[slot], plane: exact, before: $0)
+          } else {
+            record.intersect(prepared[slot], before: $0)
+          }
+        guard let hit = found else { return nil }
         weights[slot] = TriangleWeights(u: hit.u, v: hit.v, w: hit.w)
         return hit.t
       }
@@ -298,7 +309,8 @@ extension Renderer {
                   record.v0, record.v1, record.v2, origin: scene.rayOrigin)
                 : nil
               testTriangle(
-                entry, index, records, plane: plane, sides: sides,
+                entry, index, records, plane: plane,
+                exact: scene.exactPlane(ofTriangle: index), sides: sides,
                 sharedFrame: sharedFrame, rays: rays,
                 prepared: prepared, searches: searches, weights: weights)
             }

@@ -161,13 +161,10 @@ extension Triangle: Intersectable {
     guard let geometric = seen.geometricNormal else { return nil }
     var t = hit.t
     if method == .stable,
-      let plane = TrianglePlane.make(
-        relative: (seen.v0, seen.v1, seen.v2), normal: geometric, v0: v0,
-        origin: ray.origin)
+      let plane = exactPlane(seen: seen, geometric: geometric, from: ray.origin)
     {
       guard
-        let planeT = TrianglePlane.t(
-          normal: plane.normal, distance: plane.distance,
+        let planeT = plane.t(
           direction: ray.direction, after: tMin, before: tMax)
       else { return nil }
       t = planeT
@@ -179,6 +176,35 @@ extension Triangle: Intersectable {
     return Hit(
       t: t, normal: normal, materialIndex: materialIndex,
       textureCoordinate: textureCoordinates?.at(u: hit.u, v: hit.v, w: hit.w))
+  }
+
+  /// The plane the stable method takes t from, as the fast engine's
+  /// compiled triangles do: for a triangle large beside its distance from
+  /// `origin` (`TrianglePlane.make`) or whose watertight t would lose
+  /// digits (`TrianglePlane.needsExactT`), its exact plane
+  /// (`TrianglePlane.exact`, from the vertices as Doubles: exact for Float
+  /// and Double triangles; a wider type keeps the large triangles' plane
+  /// in its own precision); nil for every other triangle.
+  func exactPlane(
+    seen: Triangle, geometric: Vector3<Scalar>, from origin: Vector3<Scalar>
+  ) -> TrianglePlane.Exact<Scalar>? {
+    let relative = (seen.v0, seen.v1, seen.v2)
+    let large = TrianglePlane.make(
+      relative: relative, normal: geometric, v0: v0, origin: origin)
+    guard large != nil || TrianglePlane.needsExactT(relative: relative)
+    else { return nil }
+    if Scalar.significandBitCount <= Double.significandBitCount,
+      let exact = TrianglePlane.exact(
+        Vector3<Double>(v0), Vector3<Double>(v1), Vector3<Double>(v2),
+        origin: Vector3<Double>(origin), as: Scalar.self)
+    {
+      return exact
+    }
+    return large.map {
+      TrianglePlane.Exact(
+        normal: $0.normal, normalTail: .zero, distance: $0.distance,
+        isAxisAligned: PlaneIntersection.isAxisAligned($0.normal))
+    }
   }
 
   /// Whether the triangle is hit in (tMin, tMax); no normal is computed

@@ -78,6 +78,25 @@ public enum TriangleIntersection {
     return (t, u * inverse, v * inverse, w * inverse)
   }
 
+  /// `intersect` for a triangle whose t comes from its exact plane
+  /// (`TrianglePlane.Exact`, for large and thin triangles): the same edge
+  /// functions decide hit or miss on the ray's whole line and give the
+  /// same barycentrics, bit for bit; t is the plane's, in (tMin, tMax).
+  @inlinable @inline(__always)
+  public static func intersect<S: RayScalar>(
+    _ ray: WatertightRay<S>, _ triangle: PermutedTriangle<S>,
+    plane: TrianglePlane.Exact<S>, after tMin: S, before tMax: S
+  ) -> (t: S, u: S, v: S, w: S)? {
+    guard let edges = edgeFunctions(ray, triangle) else { return nil }
+    let (u, v, w) = (edges.u, edges.v, edges.w)
+    let determinant = u + v + w
+    guard determinant != 0,
+      let t = plane.t(direction: ray.direction, after: tMin, before: tMax)
+    else { return nil }
+    let inverse = 1 / determinant
+    return (t, u * inverse, v * inverse, w * inverse)
+  }
+
   /// Whether the ray's line passes through the triangle as `intersect`
   /// decides it, without t: the edge functions agree in sign and their sum
   /// is not zero. The same answer as `intersect(…, after: −∞, before: ∞)`

@@ -48,7 +48,9 @@ final class TriangleIntersectionTests: XCTestCase {
   /// edges decide: 2^39 in float, 2^338 in double.
   func limit<T: RayScalar>(_: T.Type) -> T {
     let plane = LargeTrianglePlane<T>(
-      (Vector3(0, 1, 0), 1), relative: (.zero, .zero, .zero))
+      .init(
+        normal: Vector3(0, 1, 0), normalTail: .zero, distance: 1,
+        isAxisAligned: true), relative: (.zero, .zero, .zero))
     XCTAssertTrue(plane.edgesDecide)
     return T(
       sign: .plus, exponent: T.greatestFiniteMagnitude.exponent / 3 - 3,
@@ -60,7 +62,9 @@ final class TriangleIntersectionTests: XCTestCase {
     let c = limit(T.self)
     func plane(_ extent: T) -> LargeTrianglePlane<T> {
       LargeTrianglePlane(
-        (Vector3(0, 1, 0), -1),
+        .init(
+          normal: Vector3(0, 1, 0), normalTail: .zero, distance: -1,
+          isAxisAligned: true),
         relative: (Vector3(-extent, -1, 1), Vector3(1, -1, 1), .zero))
     }
     XCTAssertTrue(plane(c).edgesDecide, "\(T.self)")
