@@ -136,9 +136,11 @@ extension Triangle: Intersectable {
   ///
   /// Hits from either side, with the normal as wound (not flipped); a ray
   /// through an edge or a vertex hits; a ray parallel to the triangle's
-  /// plane misses, as do degenerate triangles (`isDegenerate`). For a ray
-  /// meeting the triangle away from grazing, t is within a few ulps of the
-  /// exact plane intersection (measured bounds in TriangleTests).
+  /// plane misses, as do degenerate triangles (`isDegenerate`). With the
+  /// stable method t is within 2 + 5/cos θ ulps of the exact intersection
+  /// for any size and shape: large and thin triangles take it from their
+  /// exact plane (`exactPlane`; contract and measurements in
+  /// docs/ACCURACY.md, "Triangles of any size and shape").
   ///
   /// Both methods run the same test; they differ in the geometric normal,
   /// which the stable method takes from the vertices relative to the

@@ -1,18 +1,21 @@
-/// t for triangles much larger than their distance from the ray's origin.
+/// Triangles much larger than their distance from the ray's origin.
 ///
 /// The watertight test takes t from the sheared vertices, Σ wᵢ·zᵢ / Σ wᵢ:
 /// for a ground triangle 10⁶ across seen from one unit above it those z
 /// values are 10⁶ while t is a few units, and t keeps only ε·10⁶ of
-/// relative accuracy. Such a triangle's t is taken from its plane instead,
-/// as a `Plane`'s is (`PlaneIntersection.stableT`): k = n·(v0 − o) from the
-/// exact differences v0 − o, summed compensated and rounded once, divided
-/// by n·d (compensated near grazing). The watertight test still decides
-/// hit or miss and gives the barycentrics, so meshes stay watertight.
+/// relative accuracy. Such a triangle's t is taken from its plane instead
+/// (`TrianglePlane.exact`, as every triangle thin or large enough to lose
+/// digits is), while the watertight test still decides hit or miss and
+/// gives the barycentrics, so meshes stay watertight.
 ///
-/// Only triangles whose vertices reach beyond `reach` times their plane's
-/// distance from the origin take this path (decided from the same rounded
-/// values in the model and the fast engine), so every other triangle's t
-/// is the watertight test's, bit for bit as before.
+/// `make` decides which triangles are large: those whose vertices reach
+/// beyond `reach` times their plane's distance from the origin (decided
+/// from the same rounded values in the model and the fast engine, which
+/// keeps them in a list of their own outside its hierarchy). The plane it
+/// returns, k = n·(v0 − o) from the exact differences v0 − o for the
+/// rounded normal n, summed compensated, stands in only where the exact
+/// plane cannot be made (vertices exactly collinear in Double but not as
+/// rounded).
 public enum TrianglePlane {
   /// How far (in multiples of its plane's distance from the eye) a
   /// triangle's vertices must reach before its t is taken from the plane.
@@ -87,27 +90,5 @@ public enum TrianglePlane {
     }
     guard extent > S(reach) * k.magnitude else { return nil }
     return (n, k)
-  }
-
-  /// The plane's t for a ray from o along d, in (tMin, tMax), or nil.
-  @inlinable @inline(__always)
-  public static func t<S: RayScalar>(
-    normal n: Vector3<S>, distance k: S, direction d: Vector3<S>,
-    after tMin: S, before tMax: S
-  ) -> S? {
-    t(
-      normal: n, distance: k, isAxisAligned: PlaneIntersection.isAxisAligned(n),
-      direction: d, after: tMin, before: tMax)
-  }
-
-  /// `t`, with `PlaneIntersection.isAxisAligned(n)` found beforehand.
-  @inlinable @inline(__always)
-  public static func t<S: RayScalar>(
-    normal n: Vector3<S>, distance k: S, isAxisAligned: Bool,
-    direction d: Vector3<S>, after tMin: S, before tMax: S
-  ) -> S? {
-    PlaneIntersection.stableT(
-      normal: n, normalTail: .zero, distance: k, isAxisAligned: isAxisAligned,
-      direction: d, after: tMin, before: tMax)
   }
 }
