@@ -7,19 +7,20 @@
 /// `Compensated.twoProduct`.
 ///
 /// Used where a determinant must be known beyond any working precision:
-/// the plane of a large or thin triangle (`TrianglePlane.exact`), computed
-/// once per triangle when a scene is compiled. Exact while no component is
+/// the normal of a large or thin triangle (`TrianglePlane.exact`), computed
+/// once per such triangle when a scene is compiled. Exact while no component is
 /// subnormal or infinite (`LengthScale` keeps a compiled scene's lengths
 /// within 2^±255 of 1 in Double, whose products of three lengths stay far
 /// inside the range).
 public struct ExactSum {
   @usableFromInline var components: [Double] = []
 
-  @inlinable public init() {}
+  @inlinable public init() { components.reserveCapacity(16) }
 
   /// Adds `term` exactly (Shewchuk's Grow-Expansion, zeros dropped).
   @inlinable
   public mutating func add(_ term: Double) {
+    guard term != 0 else { return }
     var carry = term
     var kept = 0
     for index in components.indices {
@@ -42,35 +43,7 @@ public struct ExactSum {
     add(product.product)
   }
 
-  /// Adds every component of `other`.
-  @inlinable
-  public mutating func add(_ other: ExactSum) {
-    for component in other.components { add(component) }
-  }
-
-  /// The sum times 2^exponent, exact while no component leaves the
-  /// normal range.
-  @inlinable
-  public func scaled(byPowerOfTwo exponent: Int) -> ExactSum {
-    var result = self
-    for index in result.components.indices {
-      result.components[index] = Double(
-        sign: .plus, exponent: exponent, significand: result.components[index])
-    }
-    return result
-  }
-
   @inlinable public var isZero: Bool { components.isEmpty }
-
-  /// The negated sum, exactly.
-  @inlinable
-  public static prefix func - (value: ExactSum) -> ExactSum {
-    var result = value
-    for index in result.components.indices {
-      result.components[index].negate()
-    }
-    return result
-  }
 
   /// The sum as hi + lo, |lo| ≤ ulp(hi), and within a relative 2⁻¹⁰⁴ of
   /// the exact sum: hi is the components added from the smallest (within
@@ -94,14 +67,6 @@ public struct ExactSum {
     return total
   }
 
-  /// The sum rounded to S: once, up to an error of 2⁻¹⁰⁴ relative (the
-  /// pair's) for S no wider than Double; as the pair's hi + lo in S for the
-  /// wider types of the reference path.
-  @inlinable
-  public func rounded<S: RayScalar>(to _: S.Type = S.self) -> S {
-    let (hi, lo) = pair
-    return CameraRelative.narrowed(hi, lo)
-  }
 }
 
 extension RayScalar {
