@@ -39,6 +39,68 @@ extension LengthScale {
     }
   }
 
+  /// Why the course engine, which computes with the scene's own lengths
+  /// in Double and no rescaling, cannot draw `scene` right, or nil: an
+  /// object whose squares at scale 1 fall below Double's normal range (as
+  /// `problem` judges them at its own scale: a sphere of radius 1e-200,
+  /// wherever the eye is), or whose products with its distance from the
+  /// eye overflow (`tooLargeUnscaled`: a sphere 1e200 from the eye). Every
+  /// scene `problem` refuses in double is refused here too.
+  public static func unscaledProblem(_ scene: Scene) -> String? {
+    let eye = scene.camera.center
+    var large: Failure?
+    forEachPrimitive(in: .group(scene.root)) { primitive in
+      guard large == nil else { return }
+      large = tooLargeUnscaled(primitive, eye: eye)
+    }
+    let failure =
+      large
+      ?? firstFailure(
+        in: scene, smallest: Double.leastNormalMagnitude,
+        commonScale: { _ in 1 }, ownScale: { _ in 1 })
+    return failure.map {
+      "the course engine, which computes with the scene's own lengths, "
+        + "cannot draw \($0.object): \($0.measure) is "
+        + (large != nil ? "beyond double's range" : "below double's normal range")
+        + "; use --engine fast"
+    }
+  }
+
+  /// The primitive's failure when what the course engine multiplies by
+  /// its distance from the eye overflows Double: a sphere's |o − c|²
+  /// (three squares: its reach below 2^510), an ellipsoid's local eye
+  /// M⁻¹·o squared (its reach over its shortest axis below 2^510), a
+  /// triangle's s × edge (its reach times its longest edge below 2^1020,
+  /// Cramer's rule). A plane's t = (d − n·o)/n·d has no product to
+  /// overflow.
+  static func tooLargeUnscaled(_ primitive: Primitive, eye: Vector3<Double>)
+    -> Failure?
+  {
+    let reach = primitive.reach(from: eye)
+    switch primitive {
+    case .sphere(let sphere):
+      guard reach >= 0x1p510 else { return nil }
+      return Failure(
+        primitive, beside: nil,
+        measure: "the square of its distance from the eye "
+          + "(\(length(sphere.center - eye)))")
+    case .plane: return nil
+    case .triangle(let triangle):
+      let edge = edgeAndReach(triangle, eye: eye).edge
+      guard edge * reach >= 0x1p1020 else { return nil }
+      return Failure(
+        primitive, beside: nil,
+        measure: "its distance from the eye (up to \(reach) on an axis) "
+          + "times its longest edge (\(edge))")
+    case .ellipsoid(let ellipsoid):
+      guard reach / ellipsoid.shortestAxis >= 0x1p510 else { return nil }
+      return Failure(
+        primitive, beside: nil,
+        measure: "the square of its reach from the eye (\(reach) on an "
+          + "axis) over its shortest axis")
+    }
+  }
+
   /// The first primitive, in scene order, that fails both at the scene's
   /// common scale (`commonScale` of its largest length seen from the eye)
   /// and at its own (`ownScale` of its reach): one pass for the common

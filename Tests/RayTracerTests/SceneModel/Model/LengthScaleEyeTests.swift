@@ -348,6 +348,32 @@ extension LengthScaleEyeTests {
         + "scaled to about 1, its shortest axis squared is below float's "
         + "normal range; use --precision double")
   }
+
+  /// The course engine computes with the scene's own lengths: what it
+  /// cannot hold is refused for it, named so, and not for the fast engine.
+  func testUnscaledProblem_WhatTheCourseEngineCannotHold() throws {
+    let speck = try sphere(eye: 1, radius: 1e-200, at: 3e-200)
+    XCTAssertNil(LengthScale.problem(speck, precision: .double))
+    XCTAssertEqual(
+      LengthScale.unscaledProblem(speck),
+      "the course engine, which computes with the scene's own lengths, "
+        + "cannot draw a sphere of radius 1e-200 (centre 1.0 0.0 -3e-200): "
+        + "its radius squared is below double's normal range; use --engine "
+        + "fast")
+    let far = try sphere(eye: 0, radius: 1e200, at: 3e200)
+    XCTAssertNil(LengthScale.problem(far, precision: .double))
+    XCTAssertEqual(
+      LengthScale.unscaledProblem(far),
+      "the course engine, which computes with the scene's own lengths, "
+        + "cannot draw a sphere of radius 1e+200 (centre 0.0 0.0 -3e+200): "
+        + "the square of its distance from the eye (3e+200) is beyond "
+        + "double's range; use --engine fast")
+    // An eye far from the origin is no problem for Double's own lengths.
+    XCTAssertNil(
+      LengthScale.unscaledProblem(try Self.view(eye: 1e14, scale: 1)))
+    XCTAssertNil(
+      LengthScale.unscaledProblem(try Self.view(eye: 1e300, scale: 1)))
+  }
 }
 
 extension LengthScaleEyeTests {
