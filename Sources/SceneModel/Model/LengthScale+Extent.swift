@@ -18,6 +18,9 @@ extension LengthScale {
     var edgeSquaredReach = Double.infinity
     var axisSquared = Double.infinity
     var planeDistance = Double.infinity
+    /// The largest reach of an ellipsoid over its shortest axis: its eye
+    /// in its own space is that far from its centre, in radii.
+    var reachInAxes = 0.0
 
     /// Nothing measured yet: the eye's own coordinates are not a length
     /// of the scene (see `LengthScale`).
@@ -45,9 +48,11 @@ extension LengthScale {
       for plane in all.planes { add(plane) }
       for mesh in all.triangles.parts { add(mesh) }
       for ellipsoid in all.transformedSpheres {
-        largest = Swift.max(largest, ellipsoid.reach(from: eye))
+        let reach = ellipsoid.reach(from: eye)
+        largest = Swift.max(largest, reach)
         let axis = ellipsoid.shortestAxis
         axisSquared = Swift.min(axisSquared, axis * axis)
+        reachInAxes = Swift.max(reachInAxes, reach / axis)
       }
     }
 

@@ -48,20 +48,27 @@ extension LengthScale {
   /// scene `problem` refuses in double is refused here too.
   public static func unscaledProblem(_ scene: Scene) -> String? {
     let eye = scene.camera.center
+    var extent = Extent(eye: eye)
+    extent.measure(.group(scene.root))
+    // A second pass only where some product may overflow: a triangle's
+    // edge is at most twice its reach, so below 2^509 none does.
     var large: Failure?
-    forEachPrimitive(in: .group(scene.root)) { primitive in
-      guard large == nil else { return }
-      large = tooLargeUnscaled(primitive, eye: eye)
+    if extent.largest >= 0x1p509 || extent.reachInAxes >= 0x1p510 {
+      forEachPrimitive(in: .group(scene.root)) { primitive in
+        guard large == nil else { return }
+        large = tooLargeUnscaled(primitive, eye: eye)
+      }
     }
     let failure =
       large
       ?? firstFailure(
-        in: scene, smallest: Double.leastNormalMagnitude,
+        in: scene, extent, smallest: Double.leastNormalMagnitude,
         commonScale: { _ in 1 }, ownScale: { _ in 1 })
     return failure.map {
       "the course engine, which computes with the scene's own lengths, "
         + "cannot draw \($0.object): \($0.measure) is "
-        + (large != nil ? "beyond double's range" : "below double's normal range")
+        + (large != nil
+          ? "beyond double's range" : "below double's normal range")
         + "; use --engine fast"
     }
   }
@@ -105,14 +112,20 @@ extension LengthScale {
   /// common scale (`commonScale` of its largest length seen from the eye)
   /// and at its own (`ownScale` of its reach): one pass for the common
   /// scale and the smallest measures, which scale as its powers; a
-  /// second, to find the object, only when one fails.
+  /// second, to find the object, only when one fails. `measured` is the
+  /// scene's `Extent` when the caller has it.
   static func firstFailure(
-    in scene: Scene, smallest: Double, commonScale: (Double) -> Double,
-    ownScale: (Double) -> Double
+    in scene: Scene, _ measured: Extent? = nil, smallest: Double,
+    commonScale: (Double) -> Double, ownScale: (Double) -> Double
   ) -> Failure? {
     let eye = scene.camera.center
-    var extent = Extent(eye: eye)
-    extent.measure(.group(scene.root))
+    let extent =
+      measured
+      ?? {
+        var extent = Extent(eye: eye)
+        extent.measure(.group(scene.root))
+        return extent
+      }()
     let scale = commonScale(extent.largest)
     guard extent.fails(scale: scale, smallest: smallest) else { return nil }
     var found: Failure?

@@ -368,6 +368,22 @@ extension LengthScaleEyeTests {
         + "cannot draw a sphere of radius 1e+200 (centre 0.0 0.0 -3e+200): "
         + "the square of its distance from the eye (3e+200) is beyond "
         + "double's range; use --engine fast")
+    // Its eye in its own space 10¹⁶⁰ radii away: |M⁻¹·o|² overflows.
+    let thin = try scene(
+      eye: 0,
+      .transform(
+        try XCTUnwrap(
+          Transform(
+            matrix: .translation(Vector3(0, 0, -1e60))
+              * .scale(Vector3(1e-100, 2e-100, 1e-100)),
+            object: .sphere(Sphere(center: .zero, radius: 1))))))
+    XCTAssertNil(LengthScale.problem(thin, precision: .double))
+    XCTAssertEqual(
+      LengthScale.unscaledProblem(thin),
+      "the course engine, which computes with the scene's own lengths, "
+        + "cannot draw a transformed sphere whose shortest axis is 1e-100: "
+        + "the square of its reach from the eye (1e+60 on an axis) over its "
+        + "shortest axis is beyond double's range; use --engine fast")
     // An eye far from the origin is no problem for Double's own lengths.
     XCTAssertNil(
       LengthScale.unscaledProblem(try Self.view(eye: 1e14, scale: 1)))
