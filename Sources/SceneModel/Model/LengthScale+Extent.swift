@@ -96,8 +96,9 @@ extension LengthScale {
   }
 
   /// A plane's distance from the eye, |d − n·eye|, compensated and
-  /// rounded once (`CameraRelative.plane`): uncompensated, n·eye for an
-  /// eye at 1e300 would leave an error of 1e284 in a distance of 1e-300.
+  /// rounded once (`CameraRelative.plane`): uncompensated, n·eye rounds by
+  /// half its ulp, which can be 2⁵³ times the distance (a plane 10²⁶⁸ from
+  /// an eye 10³⁰⁰ from the origin along a tilted normal).
   static func distance(_ plane: Plane<Double>, eye: Vector3<Double>)
     -> Double
   {

@@ -445,3 +445,49 @@ extension LengthScaleEyeTests {
     XCTAssertEqual(eye, Vector3(1e-300 * LengthScale.factor(-k), 0, 0))
   }
 }
+
+extension LengthScaleEyeTests {
+  /// A plane tilted towards the far axis, moved to the eye with the rest:
+  /// the eye at 2⁹⁹⁶ along x, the normal (2⁻³⁰⁰, 0.6, 0.8), so n·eye =
+  /// 2⁶⁹⁶ exactly and the offset 2⁶⁹⁶ − 2⁶⁴⁴ puts the plane 2⁶⁴⁴ from the
+  /// eye, beside objects of s = 2⁶⁴²: 2³⁵¹ times nearer than the eye is to
+  /// the origin, so the scene is moved to the eye (`LengthScale.frame`)
+  /// before it is scaled. Its depth and normals are its twin's at the
+  /// origin (plane offset −2⁶⁴⁴) bit for bit, and the reference's within
+  /// the class's bounds.
+  func testFarEye_TiltedPlaneMovedToTheEye() throws {
+    let (x, s) = (0x1p996, 0x1p642)
+    func scene(eye: Double, offset: Double) throws -> Scene {
+      var scene = try Self.view(eye: eye, scale: s, kindsAsAt: x)
+      var objects = scene.root.objects.filter {
+        if case .plane = $0 { return false }
+        return true
+      }
+      objects.append(
+        .plane(Plane(normal: Vector3(0x1p-300, 0.6, 0.8), offset: offset)))
+      scene.root = Group(objects)
+      return scene
+    }
+    let far = try scene(eye: x, offset: 0x1p696 - 0x1p644)
+    let twin = try scene(eye: 0, offset: -0x1p644)
+    let all = far.root.flattened()
+    let k = LengthScale.exponent(all, eye: far.camera.center, as: Double.self)
+    XCTAssertEqual(
+      LengthScale.frame(all, eye: far.camera.center, exponent: k,
+        as: Double.self).eye, .zero, "moved to the eye")
+    let (a, b) = (depthAndNormals(far, .double), depthAndNormals(twin, .double))
+    XCTAssertGreaterThan(a.depth.filter(\.isFinite).count, 3000)
+    XCTAssertEqual(a.depth, b.depth)
+    XCTAssertEqual(a.normals, b.normals)
+    let reference = AccuracyRender.reference(
+      far, width: 64, height: 64, rays: .double)
+    let (buffers, _) = AccuracyRender.render(
+      far, width: 64, height: 64, precision: .double, method: .stable,
+      runs: 0)
+    let m = buffers.measured(against: reference)
+    XCTAssertEqual(m.disagreements, 0)
+    XCTAssertLessThanOrEqual(m.maxInteriorRelativeError / buffers.epsilon, 4)
+    XCTAssertLessThanOrEqual(m.maxRelativeError / buffers.epsilon, 16)
+    XCTAssertLessThanOrEqual(m.maxNormalErrorDegrees, 1e-6)
+  }
+}
