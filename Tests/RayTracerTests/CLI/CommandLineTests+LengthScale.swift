@@ -13,10 +13,10 @@ extension CommandLineTests {
   func testSceneError_SpeckByAFarEyeRefusedForTheCourseEngineOnly() throws {
     let scene = folder + "/speck.txt"
     try """
-      PerspectiveCamera { center 1 0 0 direction 0 0 -1 up 0 1 0 angle 45 }
-      Group { numObjects 1 Sphere { center 1 0 -3e-200 radius 1e-200 } }
+    PerspectiveCamera { center 1 0 0 direction 0 0 -1 up 0 1 0 angle 45 }
+    Group { numObjects 1 Sphere { center 1 0 -3e-200 radius 1e-200 } }
 
-      """.write(toFile: scene, atomically: true, encoding: .utf8)
+    """.write(toFile: scene, atomically: true, encoding: .utf8)
     let message =
       "\(scene): error: the course engine, which computes with the scene's "
       + "own lengths, cannot draw a sphere of radius 1e-200 (centre 1.0 0.0 "

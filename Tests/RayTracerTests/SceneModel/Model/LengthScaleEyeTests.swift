@@ -170,8 +170,7 @@ extension LengthScaleEyeTests {
   /// sphere, a triangle and the stiff suite's icosphere (its vertices
   /// rounded to Double's 1/64 there) a few units from an eye 1e14 from the
   /// origin.
-  static func meshView(eye x: Double, _ precision: Precision) throws -> Scene
-  {
+  static func meshView(eye x: Double, _ precision: Precision) throws -> Scene {
     let mesh = StiffSuiteTests.stiffFolder + "/icosphere.obj"
     let text = """
       PerspectiveCamera { center \(x) 0 0 direction 0 -0.25 -1 \
@@ -327,8 +326,8 @@ extension LengthScaleEyeTests {
       "a triangle (vertices -1e-25 -1e-25 99999999999996.0, 1e-25 -1e-25 "
         + "99999999999996.0, 0.0 1e-25 99999999999996.0) is too small beside "
         + "its distance from the eye (up to 4.0) for float: with that length "
-        + "scaled to about 1, its longest edge (2.2360679774997897e-25) squared "
-        + "is below float's normal range; use --precision double")
+        + "scaled to about 1, its longest edge (2.2360679774997897e-25) "
+        + "squared is below float's normal range; use --precision double")
     XCTAssertNil(
       LengthScale.problem(
         try triangle(Vector3(0, -1e-25, z - 4)), precision: .float),
@@ -435,7 +434,9 @@ extension LengthScaleEyeTests {
       let all = scene.root.flattened()
       let eye = scene.camera.center
       let k = LengthScale.exponent(all, eye: eye, as: Double.self)
-      return (LengthScale.frame(all, eye: eye, exponent: k, as: Double.self).eye, k)
+      return (
+        LengthScale.frame(all, eye: eye, exponent: k, as: Double.self).eye, k
+      )
     }
     XCTAssertEqual(try frame(1e300, 1e-300).0, .zero)
     XCTAssertEqual(try frame(1e100, 1e-200).0, .zero)
@@ -473,8 +474,10 @@ extension LengthScaleEyeTests {
     let all = far.root.flattened()
     let k = LengthScale.exponent(all, eye: far.camera.center, as: Double.self)
     XCTAssertEqual(
-      LengthScale.frame(all, eye: far.camera.center, exponent: k,
-        as: Double.self).eye, .zero, "moved to the eye")
+      LengthScale.frame(
+        all, eye: far.camera.center, exponent: k,
+        as: Double.self
+      ).eye, .zero, "moved to the eye")
     let (a, b) = (depthAndNormals(far, .double), depthAndNormals(twin, .double))
     XCTAssertGreaterThan(a.depth.filter(\.isFinite).count, 3000)
     XCTAssertEqual(a.depth, b.depth)
