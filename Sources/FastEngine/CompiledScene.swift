@@ -142,16 +142,11 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     eye = Vector3(scene.camera.center)
     shapeEye = scene.camera.center
     lengthScale = Scalar(LengthScale.factor(exponent))
-    let all: Primitives<Double>
-    let eyeDouble: Vector3<Double>
-    if exponent == 0 {
-      (all, eyeDouble) = (unscaled, scene.camera.center)
-    } else {
-      let factor = LengthScale.factor(-exponent)
-      (all, eyeDouble) = (
-        unscaled.scaled(by: factor), scene.camera.center * factor
-      )
-    }
+    // Scaled by 2^−k, moved to the eye first where its coordinates would
+    // leave the range (`LengthScale.frame`); as they are at k = 0.
+    let (all, eyeDouble) = LengthScale.frame(
+      unscaled, eye: scene.camera.center, exponent: exponent,
+      as: Scalar.self)
     rayOrigin = Kernel.frameOrigin(eye: eyeDouble)
     let (sphereList, planeList) = (all.spheres, all.planes)
     spheres = Self.map(sphereList) { Kernel.makeSphere($0, eye: eyeDouble) }

@@ -354,8 +354,12 @@ struct Render: ParsableCommand {
       throw ExitCode.failure
     }
     let parseSeconds = clock.lap()
+    // What the fast engine cannot hold at any scale it traces at, and,
+    // when the course engine renders, what its own lengths cannot.
+    let usesCourse = plan.settings.engine == .course || check
     if let problem = LengthScale.problem(
       scene, precision: plan.settings.precision)
+      ?? (usesCourse ? LengthScale.unscaledProblem(scene) : nil)
     {
       printError(
         SceneError(

@@ -12,8 +12,8 @@ extension LengthScale {
     public var main: Primitives<Double>
     public var exponent: Int
     /// The rest, grouped by their own scale (the k of a scene of the
-    /// object alone with the same eye), largest first; scene order within
-    /// each group.
+    /// object alone with the same eye: from its lengths seen from the eye,
+    /// `Primitive.reach`), largest first; scene order within each group.
     public var others: [(primitives: Primitives<Double>, exponent: Int)]
   }
 
@@ -44,8 +44,7 @@ extension LengthScale {
         tooSmall(primitive, eye: eye, scale: scale, smallest: smallest)
           != nil
       else { return exponent }
-      return self.exponent(
-        Swift.max(eye.maxMagnitude, primitive.largestLength), as: S.self)
+      return self.exponent(primitive.reach(from: eye), as: S.self)
     }
     func place(
       _ primitive: Primitive,

@@ -2,214 +2,260 @@
 /// render precision's range (see `LengthScale`).
 extension LengthScale {
   /// Why `scene` cannot be drawn right in `precision`, or nil: an object
-  /// so small beside its own distance from the eye that the squares and
-  /// products of its test fall below the precision's normal range at any
-  /// scale, where they keep few digits or none. A sphere whose radius
-  /// squared does (a radius of 1e-25 three units from the eye in Float:
-  /// (L/r)² = 10⁵⁰); a triangle whose longest edge squared, times its reach
-  /// from the eye where that is below 1, does (its edge functions and their
-  /// sum weighted by depth, `TriangleIntersection`); an ellipsoid whose
-  /// shortest axis squared does (its local ray's direction, M⁻¹·d, would
-  /// overflow); a plane whose distance from the eye does (t = k / n·d).
-  /// Objects that fail only at the scene's common scale are traced at
-  /// their own (`layers`); these fail at their own too, and the command
-  /// line refuses the scene rather than draw them wrong.
+  /// so small beside its own lengths seen from the eye that, at the scale
+  /// it is traced at (its largest such length brought near 1, `layers`),
+  /// the squares and products of its test fall below the precision's
+  /// normal range, where they keep few digits or none. A sphere whose
+  /// radius squared does (a radius of 1e-25 three units from the eye in
+  /// Float: (r/L)² = 10⁻⁵⁰); a triangle whose longest edge squared, times
+  /// its reach from the eye where that is below 1, does (its edge functions
+  /// and their sum weighted by depth, `TriangleIntersection`); an ellipsoid
+  /// whose shortest axis squared does (its local ray's direction, M⁻¹·d,
+  /// would overflow). A plane never does: its only length is its distance
+  /// from the eye. Objects that fail only at the scene's common scale are
+  /// traced at their own (`layers`); these fail at their own too, and the
+  /// command line refuses the scene rather than draw them wrong.
+  ///
+  /// Nothing here depends on where the eye is: every length is an offset
+  /// from it, so an eye at 1e14 beside a unit sphere, or at 1e300 beside
+  /// a speck of 1e-300 (double), is judged as the same scene with the eye
+  /// at the origin (`frame` moves such scenes to the eye before scaling).
   public static func problem(_ scene: Scene, precision: Precision)
     -> String?
   {
-    // One pass for the scale and the smallest measures, which scale as
-    // its powers; a second, to find the object, only when one fails.
+    let scale: (Double) -> Double = {
+      switch precision {
+      case .float: factor(-exponent($0, as: Float.self))
+      case .double: factor(-exponent($0, as: Double.self))
+      }
+    }
+    return firstFailure(
+      in: scene, smallest: precision.smallestNormal, commonScale: scale,
+      ownScale: scale
+    ).map {
+      "\($0.what) for \(precision.rawValue): with that length scaled to "
+        + "about 1, \($0.measure) is below \(precision.rawValue)'s normal "
+        + "range" + (precision == .float ? "; use --precision double" : "")
+    }
+  }
+
+  /// Why the course engine, which computes with the scene's own lengths
+  /// in Double and no rescaling, cannot draw `scene` right, or nil: an
+  /// object whose squares at scale 1 fall below Double's normal range (as
+  /// `problem` judges them at its own scale: a sphere of radius 1e-200,
+  /// wherever the eye is), or whose products with its distance from the
+  /// eye overflow (`tooLargeUnscaled`: a sphere 1e200 from the eye). Every
+  /// scene `problem` refuses in double is refused here too.
+  public static func unscaledProblem(_ scene: Scene) -> String? {
     let eye = scene.camera.center
     var extent = Extent(eye: eye)
     extent.measure(.group(scene.root))
-    func exponent(_ largest: Double) -> Int {
-      switch precision {
-      case .float: Self.exponent(largest, as: Float.self)
-      case .double: Self.exponent(largest, as: Double.self)
+    // A second pass only where some product may overflow: a triangle's
+    // edge is at most twice its reach, so below 2^509 none does.
+    var large: Failure?
+    if extent.largest >= 0x1p509 || extent.reachInAxes >= 0x1p510 {
+      forEachPrimitive(in: .group(scene.root)) { primitive in
+        guard large == nil else { return }
+        large = tooLargeUnscaled(primitive, eye: eye)
       }
     }
-    let scale = factor(-exponent(extent.largest))
-    let smallest = precision.smallestNormal
+    let failure =
+      large
+      ?? firstFailure(
+        in: scene, extent, smallest: Double.leastNormalMagnitude,
+        commonScale: { _ in 1 }, ownScale: { _ in 1 })
+    return failure.map {
+      "the course engine, which computes with the scene's own lengths, "
+        + "cannot draw \($0.object): \($0.measure) is "
+        + (large != nil
+          ? "beyond double's range" : "below double's normal range")
+        + "; use --engine fast"
+    }
+  }
+
+  /// The primitive's failure when what the course engine multiplies by
+  /// its distance from the eye overflows Double: a sphere's |o − c|²
+  /// (three squares: its reach below 2^510), an ellipsoid's local eye
+  /// M⁻¹·o squared (its reach over its shortest axis below 2^510), a
+  /// triangle's s × edge (its reach times its longest edge below 2^1020,
+  /// Cramer's rule). A plane's t = (d − n·o)/n·d has no product to
+  /// overflow.
+  static func tooLargeUnscaled(_ primitive: Primitive, eye: Vector3<Double>)
+    -> Failure?
+  {
+    let reach = primitive.reach(from: eye)
+    switch primitive {
+    case .sphere(let sphere):
+      guard reach >= 0x1p510 else { return nil }
+      return Failure(
+        primitive, beside: nil,
+        measure: "the square of its distance from the eye "
+          + "(\(length(sphere.center - eye)))")
+    case .plane: return nil
+    case .triangle(let triangle):
+      let edge = edgeAndReach(triangle, eye: eye).edge
+      guard edge * reach >= 0x1p1020 else { return nil }
+      return Failure(
+        primitive, beside: nil,
+        measure: "its distance from the eye (up to \(reach) on an axis) "
+          + "times its longest edge (\(edge))")
+    case .ellipsoid(let ellipsoid):
+      guard reach / ellipsoid.shortestAxis >= 0x1p510 else { return nil }
+      return Failure(
+        primitive, beside: nil,
+        measure: "the square of its reach from the eye (\(reach) on an "
+          + "axis) over its shortest axis")
+    }
+  }
+
+  /// The first primitive, in scene order, that fails both at the scene's
+  /// common scale (`commonScale` of its largest length seen from the eye)
+  /// and at its own (`ownScale` of its reach): one pass for the common
+  /// scale and the smallest measures, which scale as its powers; a
+  /// second, to find the object, only when one fails. `measured` is the
+  /// scene's `Extent` when the caller has it.
+  static func firstFailure(
+    in scene: Scene, _ measured: Extent? = nil, smallest: Double,
+    commonScale: (Double) -> Double, ownScale: (Double) -> Double
+  ) -> Failure? {
+    let eye = scene.camera.center
+    let extent =
+      measured
+      ?? {
+        var extent = Extent(eye: eye)
+        extent.measure(.group(scene.root))
+        return extent
+      }()
+    let scale = commonScale(extent.largest)
     guard extent.fails(scale: scale, smallest: smallest) else { return nil }
-    var found: String?
+    var found: Failure?
     forEachPrimitive(in: .group(scene.root)) { primitive in
       guard found == nil,
         tooSmall(primitive, eye: eye, scale: scale, smallest: smallest)
           != nil
       else { return }
-      let own = Swift.max(eye.maxMagnitude, primitive.largestLength)
-      guard
-        let what = tooSmall(
-          primitive, eye: eye, scale: factor(-exponent(own)),
-          smallest: smallest)
-      else { return }
-      found =
-        "\(what) is too small beside its coordinates and the eye's (up to "
-        + "\(own)) for \(precision.rawValue): its squares leave the range "
-        + "at any scale"
-        + (precision == .float ? "; use --precision double" : "")
+      found = tooSmall(
+        primitive, eye: eye, scale: ownScale(primitive.reach(from: eye)),
+        smallest: smallest)
     }
     return found
   }
 
-  /// The scene's largest length and, per kind, the smallest of the
-  /// measures `tooSmall` compares at a scale f: a radius squared (f²), a
-  /// triangle's longest edge squared (f²) and that times its reach (f³),
-  /// an ellipsoid's shortest axis squared (f²), a plane's distance from
-  /// the eye (f). Some primitive fails at f exactly when one of these
-  /// minima does.
-  struct Extent {
-    let eye: Vector3<Double>
-    var largest: Double
-    var radiusSquared = Double.infinity
-    var edgeSquared = Double.infinity
-    var edgeSquaredReach = Double.infinity
-    var axisSquared = Double.infinity
-    var planeDistance = Double.infinity
+  /// What leaves the range, for a message: the object, the length seen
+  /// from the eye that sets the scale it is traced at (nil for a plane,
+  /// whose only length is its distance from the eye), and the measure
+  /// whose square falls below the range there.
+  struct Failure {
+    var object: String
+    var beside: String?
+    var measure: String
 
-    init(eye: Vector3<Double>) {
-      self.eye = eye
-      largest = eye.maxMagnitude
+    init(_ primitive: Primitive, beside: String?, measure: String) {
+      object = primitive.description
+      self.beside = beside
+      self.measure = measure
     }
 
-    mutating func measure(_ object: SceneObject<Double>) {
-      switch object {
-      case .sphere(let sphere): add(sphere)
-      case .plane(let plane): add(plane)
-      case .triangle(let triangle): add(triangle)
-      case .mesh(let mesh): add(mesh)
-      case .group(let group):
-        for child in group.objects { measure(child) }
-      case .transform: add(Group([object]).flattened())
-      case .shape: break
-      }
-    }
-
-    /// Every primitive of `all`.
-    mutating func add(_ all: Primitives<Double>) {
-      for sphere in all.spheres { add(sphere) }
-      for plane in all.planes { add(plane) }
-      for mesh in all.triangles.parts { add(mesh) }
-      for ellipsoid in all.transformedSpheres {
-        largest = Swift.max(largest, ellipsoid.largestLength)
-        let axis = ellipsoid.shortestAxis
-        axisSquared = Swift.min(axisSquared, axis * axis)
-      }
-    }
-
-    mutating func add(_ plane: Plane<Double>) {
-      largest = Swift.max(largest, plane.offset.magnitude)
-      let distance = LengthScale.distance(plane, eye: eye)
-      if distance > 0 { planeDistance = Swift.min(planeDistance, distance) }
-    }
-
-    mutating func add(_ sphere: Sphere<Double>) {
-      largest = Swift.max(largest, sphere.largestLength)
-      radiusSquared = Swift.min(radiusSquared, sphere.radius * sphere.radius)
-    }
-
-    /// Every triangle of `mesh`, by its vertices alone.
-    mutating func add(_ mesh: TriangleMesh<Double>) {
-      for index in mesh.indices { add(mesh.vertices(at: index)) }
-    }
-
-    mutating func add(_ triangle: Triangle<Double>) {
-      add((triangle.v0, triangle.v1, triangle.v2))
-    }
-
-    mutating func add(
-      _ vertices: (Vector3<Double>, Vector3<Double>, Vector3<Double>)
-    ) {
-      // As `Triangle.largestLength`, in the same order.
-      largest = Swift.max(
-        largest,
-        Swift.max(
-          vertices.0.maxMagnitude, vertices.1.maxMagnitude,
-          vertices.2.maxMagnitude))
-      let (edge, reach) = LengthScale.edgeAndReach(vertices, eye: eye)
-      guard edge > 0 else { return }
-      edgeSquared = Swift.min(edgeSquared, edge * edge)
-      edgeSquaredReach = Swift.min(edgeSquaredReach, edge * edge * reach)
-    }
-
-    /// Whether some primitive fails at scale `f` (see `tooSmall`).
-    func fails(scale f: Double, smallest: Double) -> Bool {
-      radiusSquared * f * f < smallest || edgeSquared * f * f < smallest
-        || edgeSquaredReach * f * f * f < smallest
-        || axisSquared * f * f < 4 * smallest
-        || planeDistance * f < smallest
+    /// "a sphere … is too small beside its distance from the eye (3.0)".
+    var what: String {
+      "\(object) is "
+        + (beside.map { "too small beside \($0)" } ?? "too near the eye")
     }
   }
 
-  /// A plane's distance from the eye, |d − n·eye| (nearly: in Double,
-  /// uncompensated, which is enough to judge its range).
-  static func distance(_ plane: Plane<Double>, eye: Vector3<Double>)
-    -> Double
-  {
-    (plane.offset - plane.normal.dot(eye)).magnitude
-  }
-
-  /// A triangle's longest edge and the farthest of its vertices from the
-  /// eye, in max-norm.
-  static func edgeAndReach(_ triangle: Triangle<Double>, eye: Vector3<Double>)
-    -> (edge: Double, reach: Double)
-  {
-    edgeAndReach((triangle.v0, triangle.v1, triangle.v2), eye: eye)
-  }
-
-  /// `edgeAndReach` of the triangle with vertices `vertices`.
-  static func edgeAndReach(
-    _ vertices: (Vector3<Double>, Vector3<Double>, Vector3<Double>),
-    eye: Vector3<Double>
-  ) -> (edge: Double, reach: Double) {
-    let (a, b, c) = vertices
-    return (
-      Swift.max(
-        (b - a).maxMagnitude, (c - b).maxMagnitude, (a - c).maxMagnitude),
-      Swift.max(
-        (a - eye).maxMagnitude, (b - eye).maxMagnitude,
-        (c - eye).maxMagnitude)
-    )
-  }
-
-  /// The primitive, described, when its squares at `scale` fall below
+  /// The primitive's failure when its squares at `scale` fall below
   /// `smallest` (see `problem`); nil when they do not.
   static func tooSmall(
     _ primitive: Primitive, eye: Vector3<Double>, scale: Double,
     smallest: Double
-  ) -> String? {
+  ) -> Failure? {
     switch primitive {
     case .sphere(let sphere):
       let radius = sphere.radius * scale
       guard radius * radius < smallest else { return nil }
-      let c = sphere.center
-      return "a sphere of radius \(sphere.radius) (centre \(c.x) \(c.y) "
-        + "\(c.z))"
+      return Failure(
+        primitive,
+        beside: "its distance from the eye "
+          + "(\(length(sphere.center - eye)))",
+        measure: "its radius squared")
     case .plane(let plane):
       // t = k / n·d: k, the distance from the eye, must stay normal.
       let distance = Self.distance(plane, eye: eye)
       guard distance > 0, distance * scale < smallest else { return nil }
-      let n = plane.normal
-      return "a plane (normal \(n.x) \(n.y) \(n.z), offset "
-        + "\(plane.offset))"
+      return Failure(
+        primitive, beside: nil,
+        measure: "its distance from the eye (\(distance))")
     case .triangle(let triangle):
-      let (a, b, c) = (triangle.v0, triangle.v1, triangle.v2)
       let (unscaledEdge, unscaledReach) = edgeAndReach(triangle, eye: eye)
       let (edge, reach) = (unscaledEdge * scale, unscaledReach * scale)
-      // A degenerate triangle (no edge) is never hit at any scale.
-      guard unscaledEdge > 0, edge * edge * Swift.min(reach, 1) < smallest
+      // A degenerate triangle (no edge, or its vertices on a line) is
+      // never hit at any scale.
+      guard unscaledEdge > 0, edge * edge * Swift.min(reach, 1) < smallest,
+        !isLine(triangle, longestEdge: unscaledEdge)
       else {
         return nil
       }
-      return "a triangle (vertices \(a.x) \(a.y) \(a.z), \(b.x) \(b.y) "
-        + "\(b.z), \(c.x) \(c.y) \(c.z))"
+      let (a, b, c) = (triangle.v0, triangle.v1, triangle.v2)
+      let farthest = Swift.max(
+        length(a - eye), length(b - eye), length(c - eye))
+      let longest = Swift.max(length(b - a), length(c - b), length(a - c))
+      return Failure(
+        primitive, beside: "its distance from the eye (up to \(farthest))",
+        measure: "its longest edge (\(longest)) squared")
     case .ellipsoid(let ellipsoid):
       let axis = ellipsoid.shortestAxis
       guard (axis * scale) * (axis * scale) < 4 * smallest else {
         return nil
       }
-      return "a transformed sphere whose shortest axis is \(axis)"
+      let m = ellipsoid.matrix
+      let distance = length(Vector3(m.m03, m.m13, m.m23) - eye)
+      return Failure(
+        primitive,
+        beside: ellipsoid.reach(from: eye) > 2 * distance
+          ? "its longest axis (up to \(ellipsoid.reach(from: eye)))"
+          : "its distance from the eye (\(distance))",
+        measure: "its shortest axis squared")
     }
   }
 
+  /// Whether the triangle's vertices are on a line: its edges, brought
+  /// near 1 by a power of two (exactly), have no cross product.
+  static func isLine(_ triangle: Triangle<Double>, longestEdge: Double)
+    -> Bool
+  {
+    let f = factor(-Int(longestEdge.exponent))
+    let (a, b, c) = (triangle.v0 * f, triangle.v1 * f, triangle.v2 * f)
+    return (b - a).cross(c - a) == .zero
+  }
+
+  /// |v|, without squaring v at its own scale (where the squares of an
+  /// offset of 1e-200 would underflow).
+  static func length(_ v: Vector3<Double>) -> Double {
+    let largest = v.maxMagnitude
+    guard largest > 0, largest.isFinite else { return largest }
+    return (v / largest).length * largest
+  }
+}
+
+extension LengthScale.Primitive: CustomStringConvertible {
+  /// The primitive as a message names it, by its own values.
+  var description: String {
+    switch self {
+    case .sphere(let sphere):
+      let c = sphere.center
+      return "a sphere of radius \(sphere.radius) (centre \(c.x) \(c.y) "
+        + "\(c.z))"
+    case .plane(let plane):
+      let n = plane.normal
+      return "a plane (normal \(n.x) \(n.y) \(n.z), offset "
+        + "\(plane.offset))"
+    case .triangle(let triangle):
+      let (a, b, c) = (triangle.v0, triangle.v1, triangle.v2)
+      return "a triangle (vertices \(a.x) \(a.y) \(a.z), \(b.x) \(b.y) "
+        + "\(b.z), \(c.x) \(c.y) \(c.z))"
+    case .ellipsoid(let ellipsoid):
+      return "a transformed sphere whose shortest axis is "
+        + "\(ellipsoid.shortestAxis)"
+    }
+  }
 }

@@ -15,32 +15,43 @@
 /// scaled scene and report t = t′·2^k; lights, shading and the camera's
 /// ray directions are untouched.
 ///
-/// The scale is chosen once per render from the scene's largest length
-/// (`exponent`): 0, no rescaling at all, while that length is within
-/// 2^±(E/4) of 1 for a precision whose largest exponent is E (2^±31 for
-/// Float, 2^±255 for Double and wider types, whose records are computed
-/// in Double first), which holds every scene the project had
-/// before, so they run exactly as before. Beyond, the scene is brought to
-/// lengths near 1, where a scene spanning up to 2^(E/4) in relative size
-/// keeps its squares normal.
+/// The scale is judged from the eye: the records are offsets from it
+/// (`CameraRelative`), so what their squares must hold is the scene's
+/// lengths seen from the eye (offsets of centres and vertices, radii,
+/// planes' distances, ellipsoids' reach), never the coordinates
+/// themselves. A sphere of 1e-25 by an eye at x = 1 and the same sphere by
+/// an eye at the origin are the same problem. The scale is chosen once per
+/// render from the largest such length (`exponent`): 0, no rescaling at
+/// all, while that length is within 2^±(E/4) of 1 for a precision whose
+/// largest exponent is E (2^±31 for Float, 2^±255 for Double and wider
+/// types, whose records are computed in Double first), which holds every
+/// scene the project had before, so they run exactly as before. Beyond,
+/// the scene is brought to lengths near 1, where a scene spanning up to
+/// 2^(E/4) in relative size keeps its squares normal. Where the eye is so
+/// far from the origin beside those lengths that its scaled coordinates
+/// would leave that window (an eye at 1e300 beside specks of 1e-300), the
+/// scene is first moved to the eye (`frame`), so that no coordinate, only
+/// offsets, is scaled.
 ///
-/// What rescaling cannot save: a scene whose own range of lengths exceeds
-/// what the precision's squares hold (a sphere of radius 1e-25 seen from 3
-/// units in Float, ratio² = 1e50); its squares overflow at any scale.
+/// What rescaling cannot save: an object whose own lengths seen from the
+/// eye span more than the precision's squares hold at the scale of its
+/// distance (a sphere of radius 1e-25 three units from the eye in Float:
+/// brought near 1, its radius squared is 10⁻⁵⁰; `problem`).
 public enum LengthScale {
   /// The k of the scale 2^−k for `all` seen from `eye` in precision `S`:
-  /// 0 when the largest length is within 2^±(E/4) of 1, else the exponent
-  /// of that length, so that the scaled scene's largest length is in
-  /// [1, 2).
+  /// 0 when the largest length seen from the eye is within 2^±(E/4) of 1,
+  /// else the exponent of that length, so that the scaled scene's largest
+  /// length is in [1, 2).
   public static func exponent<S: RayScalar>(
     _ all: Primitives<Double>, eye: Vector3<Double>, as _: S.Type
   ) -> Int {
     exponent(largestLength(all, eye: eye), as: S.self)
   }
 
-  /// The largest magnitude of any length of the scene: coordinates of
-  /// the eye, centres and vertices, radii, plane offsets and the rows of a
-  /// transformed sphere's matrix.
+  /// The largest length of the scene seen from `eye` (`Primitive.reach`):
+  /// offsets of centres and vertices from the eye, radii, planes'
+  /// distances from the eye, ellipsoids' reach. The eye's own coordinates
+  /// are not lengths of the scene: they cancel in every record.
   static func largestLength(
     _ all: Primitives<Double>, eye: Vector3<Double>
   ) -> Double {
@@ -54,18 +65,24 @@ public enum LengthScale {
   static func exponent<S: RayScalar>(_ largest: Double, as _: S.Type)
     -> Int
   {
-    guard largest > 0, largest.isFinite else { return 0 }
-    // Records are computed from the scene's Double values in Double
-    // (compensated, `CameraRelative`) before they are rounded to S: the
-    // narrower of the two ranges decides, so that a wider S (the Float80
-    // reference) is computed at the same scale as a Double render.
-    let limit =
-      Int(
-        Swift.min(
-          S.greatestFiniteMagnitude.exponent,
-          S(Double.greatestFiniteMagnitude).exponent)) / 4
-    let exponent = Int(largest.exponent)
+    guard largest > 0 else { return 0 }
+    // An offset between coordinates of opposite signs near Double's limit
+    // overflows: it is at least 2^1024, and 2^−1023 brings it near 1.
+    let exponent = Int(Swift.min(largest, .greatestFiniteMagnitude).exponent)
+    let limit = window(S.self)
     return (-limit...limit).contains(exponent) ? 0 : exponent
+  }
+
+  /// E/4 for the narrower of S's and Double's largest exponents E: the
+  /// window 2^±(E/4) of lengths traced unscaled. Records are computed from
+  /// the scene's Double values in Double (compensated, `CameraRelative`)
+  /// before they are rounded to S, so a wider S (the Float80 reference) is
+  /// computed at the same scale as a Double render.
+  static func window<S: RayScalar>(_: S.Type) -> Int {
+    Int(
+      Swift.min(
+        S.greatestFiniteMagnitude.exponent,
+        S(Double.greatestFiniteMagnitude).exponent)) / 4
   }
 
   /// Calls `body` with every primitive of `object` in the world: objects
@@ -95,14 +112,16 @@ public enum LengthScale {
     case triangle(Triangle<Double>)
     case ellipsoid(TransformedSphere<Double>)
 
-    /// Its largest length, for the scene's scale: coordinates of centres
-    /// and vertices, radii, plane offsets, a transformed sphere's reach.
-    var largestLength: Double {
+    /// Its largest length seen from `eye`, for the scale it is traced
+    /// at: a sphere's centre's offset or its radius, a triangle's farthest
+    /// vertex, a plane's distance, an ellipsoid's reach (in max-norm).
+    func reach(from eye: Vector3<Double>) -> Double {
       switch self {
-      case .sphere(let sphere): sphere.largestLength
-      case .plane(let plane): plane.offset.magnitude
-      case .triangle(let triangle): triangle.largestLength
-      case .ellipsoid(let ellipsoid): ellipsoid.largestLength
+      case .sphere(let sphere): sphere.reach(from: eye)
+      case .plane(let plane): LengthScale.distance(plane, eye: eye)
+      case .triangle(let triangle):
+        LengthScale.edgeAndReach(triangle, eye: eye).reach
+      case .ellipsoid(let ellipsoid): ellipsoid.reach(from: eye)
       }
     }
   }
@@ -124,18 +143,10 @@ extension Primitives<Double> {
 }
 
 extension Sphere<Double> {
-  /// The largest length it gives the scene's scale: its centre's
-  /// coordinates and its radius.
-  var largestLength: Double {
-    Swift.max(center.maxMagnitude, radius.magnitude)
-  }
-}
-
-extension Triangle<Double> {
-  /// The largest length it gives the scene's scale: its vertices'
-  /// coordinates.
-  var largestLength: Double {
-    Swift.max(v0.maxMagnitude, v1.maxMagnitude, v2.maxMagnitude)
+  /// Its largest length seen from `eye`: its centre's offset (max-norm)
+  /// or its radius.
+  func reach(from eye: Vector3<Double>) -> Double {
+    Swift.max((center - eye).maxMagnitude, radius.magnitude)
   }
 }
 
@@ -156,13 +167,15 @@ extension TransformedSphere<Double> {
       length(Vector3(m.m02, m.m12, m.m22))) * sphere.radius
   }
 
-  /// The largest length it gives the scene's scale: each linear entry of
-  /// its matrix times the sphere's reach in its own space, and the
-  /// translation.
-  var largestLength: Double {
+  /// Its largest length seen from `eye`: each linear entry of its matrix
+  /// times the sphere's reach in its own space, and the translation's
+  /// offset from the eye.
+  func reach(from eye: Vector3<Double>) -> Double {
     let m = matrix
     let reach = sphere.center.maxMagnitude + sphere.radius
-    var largest = Swift.max(m.m03.magnitude, m.m13.magnitude, m.m23.magnitude)
+    var largest = Swift.max(
+      (m.m03 - eye.x).magnitude, (m.m13 - eye.y).magnitude,
+      (m.m23 - eye.z).magnitude)
     for entry in [
       m.m00, m.m01, m.m02, m.m10, m.m11, m.m12, m.m20, m.m21, m.m22,
     ] {

@@ -248,9 +248,9 @@ final class CommandLineTests: XCTestCase {
     XCTAssertEqual(
       outcome.stderr,
       "\(scene): error: a sphere of radius 1e-25 (centre 0.0 0.0 0.0) is too "
-        + "small beside its coordinates and the eye's (up to 10.0) for "
-        + "float: its squares leave the range at any scale; use "
-        + "--precision double\n")
+        + "small beside its distance from the eye (10.0) for float: with "
+        + "that length scaled to about 1, its radius squared is below "
+        + "float's normal range; use --precision double\n")
     XCTAssertFalse(files().contains("out.png"))
   }
 

@@ -86,8 +86,9 @@ final class LengthScaleTests: XCTestCase {
       LengthScale.exponent(all, eye: .zero, as: Double.self), -665)
   }
 
-  /// A sphere whose radius squared leaves the precision at any common
-  /// scale is named; the same sphere at a scale it can hold is not.
+  /// A sphere whose radius squared leaves the precision at the scale of
+  /// its distance from the eye is named; the same sphere at a scale it can
+  /// hold is not.
   func testProblem_SphereTooSmallBesideTheScene() throws {
     let camera = try XCTUnwrap(
       PerspectiveCamera(
@@ -101,8 +102,9 @@ final class LengthScaleTests: XCTestCase {
     XCTAssertEqual(
       LengthScale.problem(scene(1e-25), precision: .float),
       "a sphere of radius 1e-25 (centre 0.0 0.0 0.0) is too small beside "
-        + "its coordinates and the eye's (up to 3.0) for float: its squares "
-        + "leave the range at any scale; use --precision double")
+        + "its distance from the eye (3.0) for float: with that length "
+        + "scaled to about 1, its radius squared is below float's normal "
+        + "range; use --precision double")
     XCTAssertNil(LengthScale.problem(scene(1e-25), precision: .double))
     XCTAssertNil(LengthScale.problem(scene(1e-15), precision: .float))
     XCTAssertNotNil(LengthScale.problem(scene(1e-160), precision: .double))
@@ -146,9 +148,10 @@ final class LengthScaleTests: XCTestCase {
       LengthScale.problem(
         scene(far, triangle(1e-25, at: -3)), precision: .float),
       "a triangle (vertices -1e-25 -1e-25 -3.0, 1e-25 -1e-25 -3.0, 0.0 "
-        + "1e-25 -3.0) is too small beside its coordinates and the eye's (up "
-        + "to 3.0) for float: its squares leave the range at any scale; use "
-        + "--precision double")
+        + "1e-25 -3.0) is too small beside its distance from the eye (up to "
+        + "3.0) for float: with that length scaled to about 1, its longest "
+        + "edge (2.2360679774997897e-25) squared is below float's normal "
+        + "range; use --precision double")
     XCTAssertNil(
       LengthScale.problem(
         scene(triangle(1e-25, at: -3)), precision: .double))
