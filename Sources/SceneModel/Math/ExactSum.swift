@@ -13,26 +13,44 @@
 /// within 2^±255 of 1 in Double, whose products of three lengths stay far
 /// inside the range).
 public struct ExactSum {
-  @usableFromInline var components: [Double] = []
+  /// The components, in increasing magnitude, in `storage[0..<count]`.
+  @usableFromInline var storage: [Double]
+  @usableFromInline var count = 0
 
-  @inlinable public init() { components.reserveCapacity(16) }
+  /// Room for `capacity` components to start with (a sum of n terms never
+  /// has more than n); it grows if needed.
+  @inlinable
+  public init(capacity: Int = 16) {
+    storage = Array(repeating: 0, count: capacity)
+  }
 
-  /// Adds `term` exactly (Shewchuk's Grow-Expansion, zeros dropped).
+  /// The components, smallest first.
+  @inlinable public var components: ArraySlice<Double> { storage[0..<count] }
+
+  /// Adds `term` exactly (Shewchuk's Grow-Expansion, zeros dropped), in
+  /// place.
   @inlinable
   public mutating func add(_ term: Double) {
     guard term != 0 else { return }
-    var carry = term
-    var kept = 0
-    for index in components.indices {
-      let (sum, error) = Compensated.twoSum(carry, components[index])
-      carry = sum
-      if error != 0 {
-        components[kept] = error
+    if count == storage.count { storage += repeatElement(0, count: count) }
+    let length = count
+    count = storage.withUnsafeMutableBufferPointer { e in
+      var carry = term
+      var kept = 0
+      for index in 0..<length {
+        let (sum, error) = Compensated.twoSum(carry, e[index])
+        carry = sum
+        if error != 0 {
+          e[kept] = error
+          kept += 1
+        }
+      }
+      if carry != 0 {
+        e[kept] = carry
         kept += 1
       }
+      return kept
     }
-    components.removeSubrange(kept...)
-    if carry != 0 { components.append(carry) }
   }
 
   /// Adds a·b exactly.
@@ -43,30 +61,25 @@ public struct ExactSum {
     add(product.product)
   }
 
-  @inlinable public var isZero: Bool { components.isEmpty }
+  @inlinable public var isZero: Bool { count == 0 }
 
-  /// The sum as hi + lo, |lo| ≤ ulp(hi), and within a relative 2⁻¹⁰⁴ of
-  /// the exact sum: hi is the components added from the smallest (within
-  /// an ulp or two of the sum, since they do not overlap), lo the exact
-  /// remainder's components added the same way.
+  /// The sum as hi + lo with |lo| ≤ ulp(hi)/2, within a relative 2⁻¹⁰⁴ of
+  /// the exact sum: the components added from the smallest with their
+  /// errors gathered (Sum2), whose only error is in the gathered errors,
+  /// themselves below an ulp of each partial sum of non-overlapping
+  /// components.
   @inlinable
   public var pair: (hi: Double, lo: Double) {
-    let hi = estimate
-    var remainder = self
-    remainder.add(-hi)
-    let lo = remainder.estimate
-    let renormalised = Compensated.twoSum(hi, lo)
+    var total = 0.0
+    var errors = 0.0
+    for index in 0..<count {
+      let step = Compensated.twoSum(total, storage[index])
+      total = step.sum
+      errors += step.error
+    }
+    let renormalised = Compensated.twoSum(total, errors)
     return (renormalised.sum, renormalised.error)
   }
-
-  /// The components added from the smallest.
-  @inlinable
-  public var estimate: Double {
-    var total = 0.0
-    for component in components { total += component }
-    return total
-  }
-
 }
 
 extension RayScalar {

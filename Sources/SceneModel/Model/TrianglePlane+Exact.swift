@@ -73,34 +73,35 @@ extension TrianglePlane {
   /// Whether the watertight t of the triangle with vertices `relative`
   /// (relative to the eye, as the records hold them) may be off by more
   /// than `conditionLimit` ε: the estimate above, from the rounded
-  /// vertices, in Double and in squares (no square root: it runs for every
-  /// triangle of every mesh), after a power of two brings the largest
-  /// coordinate near 1 (exact, and every square then in range). The
-  /// distance is bounded below by the larger of the plane's distance and
-  /// the gap between the eye and the triangle's box (in max-norm, never
-  /// more than the true distance), so a triangle seen edge-on from afar is
-  /// not taken for a large one.
+  /// vertices, in their own precision and in squares (no square root or
+  /// conversion: it runs for every triangle of every mesh), after a power
+  /// of two brings the largest coordinate to [1, 2) (exact, and every
+  /// square then in range; one that underflows to zero asks for the exact
+  /// plane, which settles it). The distance is bounded below by the larger
+  /// of the plane's distance and the gap between the eye and the
+  /// triangle's box (in max-norm, never more than the true distance), so a
+  /// triangle seen edge-on from afar is not taken for a large one.
+  @inlinable
   public static func needsExactT<S: RayScalar>(
     relative: (Vector3<S>, Vector3<S>, Vector3<S>)
   ) -> Bool {
-    let largest = Double(
-      Swift.max(
-        relative.0.maxMagnitude, relative.1.maxMagnitude,
-        relative.2.maxMagnitude))
+    let largest = Swift.max(
+      relative.0.maxMagnitude, relative.1.maxMagnitude,
+      relative.2.maxMagnitude)
     guard largest > 0, largest.isFinite else { return false }
-    let scale = Double(sign: .plus, exponent: -largest.exponent, significand: 1)
-    let a = Vector3<Double>(relative.0) * scale
-    let b = Vector3<Double>(relative.1) * scale
-    let c = Vector3<Double>(relative.2) * scale
+    let scale = S(sign: .plus, exponent: -largest.exponent, significand: 1)
+    let a = relative.0 * scale
+    let b = relative.1 * scale
+    let c = relative.2 * scale
     let (e1, e2, e3) = (b - a, c - a, c - b)
     let cross = e1.cross(e2)
     let crossSquared = cross.lengthSquared
-    guard crossSquared > 0 else { return false }
+    guard crossSquared > 0 else { return true }
     let longestSquared = Swift.max(
       e1.lengthSquared, e2.lengthSquared, e3.lengthSquared)
     let k = cross.dot(a)
     let planeDistanceSquared = k * k / crossSquared
-    func gap(_ p: Double, _ q: Double, _ r: Double) -> Double {
+    @inline(__always) func gap(_ p: S, _ q: S, _ r: S) -> S {
       let (low, high) = (Swift.min(p, q, r), Swift.max(p, q, r))
       return low > 0 ? low : (high < 0 ? -high : 0)
     }
@@ -110,8 +111,8 @@ extension TrianglePlane {
     // (longest² / twice the area)² · max(1, longest² / near²) > limit².
     let thinnessSquared = longestSquared * longestSquared / crossSquared
     let reachSquared = longestSquared / nearSquared
-    return thinnessSquared * Swift.max(1, reachSquared)
-      > conditionLimit * conditionLimit
+    let limit = S(conditionLimit)
+    return thinnessSquared * Swift.max(1, reachSquared) > limit * limit
   }
 
   /// The exact plane of the triangle (v0, v1, v2) seen from `origin`
@@ -119,7 +120,7 @@ extension TrianglePlane {
   /// is), in S; nil when the vertices are exactly collinear.
   ///
   /// n is exact (`ExactSum` over the products of the edges' exact
-  /// differences), then rounded to Double's twice precision and scaled; k
+  /// differences), then rounded to twice Double's precision and scaled; k
   /// is summed from the exact products of the stored normal and the exact
   /// differences v0 − o as if in twice Double's precision (Sum2, as the
   /// camera-relative constants of spheres are) and rounded once.
@@ -139,76 +140,91 @@ extension TrianglePlane {
     let e1 = differences(v1, v0)
     let e2 = differences(v2, v0)
     // p·q − r·s for exact pairs, every partial product exact.
+    var scratch = ExactSum()
     func crossComponent(_ p: Pair, _ q: Pair, _ r: Pair, _ s: Pair)
-      -> ExactSum
+      -> (hi: Double, lo: Double)
     {
-      var sum = ExactSum()
-      for (x, y) in [
-        (p.sum, q.sum), (p.sum, q.error), (p.error, q.sum),
-        (p.error, q.error), (-r.sum, s.sum), (-r.sum, s.error),
-        (-r.error, s.sum), (-r.error, s.error),
-      ] where x != 0 && y != 0 {
-        sum.add(x, times: y)
-      }
-      return sum
+      scratch.count = 0
+      scratch.add(p.sum, times: q.sum)
+      scratch.add(p.sum, times: q.error)
+      scratch.add(p.error, times: q.sum)
+      scratch.add(p.error, times: q.error)
+      scratch.add(-r.sum, times: s.sum)
+      scratch.add(-r.sum, times: s.error)
+      scratch.add(-r.error, times: s.sum)
+      scratch.add(-r.error, times: s.error)
+      return scratch.pair
     }
-    let exactNormal = [
+    var n = (
       crossComponent(e1.1, e2.2, e1.2, e2.1),
       crossComponent(e1.2, e2.0, e1.0, e2.2),
-      crossComponent(e1.0, e2.1, e1.1, e2.0),
-    ]
-    guard exactNormal.contains(where: { !$0.isZero }) else { return nil }
-    var n = exactNormal.map(\.pair)
+      crossComponent(e1.0, e2.1, e1.1, e2.0)
+    )
+    let largest = Swift.max(
+      n.0.hi.magnitude, n.1.hi.magnitude, n.2.hi.magnitude)
+    guard largest > 0 else { return nil }
     // A power of two bringing |n| into [½, 1): exact.
-    let largest = Swift.max(n[0].hi.magnitude, n[1].hi.magnitude, n[2].hi.magnitude)
-    let unit = Vector3(n[0].hi, n[1].hi, n[2].hi)
+    let unit =
+      Vector3(n.0.hi, n.1.hi, n.2.hi)
       * Double(sign: .plus, exponent: -largest.exponent, significand: 1)
     let exponent = -largest.exponent - unit.length.exponent - 1
-    n = n.map {
+    func scaled(_ p: (hi: Double, lo: Double)) -> (hi: Double, lo: Double) {
       (
-        Double(sign: .plus, exponent: exponent, significand: $0.hi),
-        Double(sign: .plus, exponent: exponent, significand: $0.lo)
+        Double(sign: .plus, exponent: exponent, significand: p.hi),
+        Double(sign: .plus, exponent: exponent, significand: p.lo)
       )
     }
-    // The normal rounded to S and its tail, and the Doubles whose sum is
-    // exactly the stored normal + tail.
-    var heads: [S] = []
-    var tails: [S] = []
-    var parts: [[Double]] = []
-    for (hi, lo) in n {
-      let head: S = CameraRelative.narrowed(hi, lo)
-      let tail: S
-      if S.significandBitCount <= Double.significandBitCount {
-        tail = S((hi - Double(head)) + lo)
-        parts.append([Double(head), Double(tail)])
-      } else {
-        tail = (S(hi) - head) + S(lo)
-        parts.append(head.exactDoubles + tail.exactDoubles)
+    n = (scaled(n.0), scaled(n.1), scaled(n.2))
+    // The normal rounded to S, its tail, and Doubles whose sum is exactly
+    // the stored normal + tail (two for S no wider than Double).
+    func stored(_ p: (hi: Double, lo: Double)) -> (
+      head: S, tail: S, parts: [Double]
+    ) {
+      if S.self == Double.self { return (S(p.hi), S(p.lo), []) }
+      if S.significandBitCount < Double.significandBitCount {
+        let head: S = CameraRelative.narrowed(p.hi, p.lo)
+        return (head, S((p.hi - Double(head)) + p.lo), [])
       }
-      heads.append(head)
-      tails.append(tail)
+      let head = S(p.hi) + S(p.lo)
+      let tail = (S(p.hi) - head) + S(p.lo)
+      return (head, tail, head.exactDoubles + tail.exactDoubles)
     }
-    let normal = Vector3(heads[0], heads[1], heads[2])
-    let tail = Vector3(tails[0], tails[1], tails[2])
+    let x = stored(n.0)
+    let y = stored(n.1)
+    let z = stored(n.2)
     let offset = differences(v0, origin)
-    let offsets = [offset.0, offset.1, offset.2]
     let distance: S = withUnsafeTemporaryAllocation(
-      of: Double.self, capacity: 64
+      of: Double.self, capacity: 96
     ) { terms in
       var count = 0
-      for axis in 0..<3 {
-        for part in parts[axis] {
-          for d in [offsets[axis].sum, offsets[axis].error] where d != 0 {
-            let product = Compensated.twoProduct(part, d)
-            terms[count] = product.product
-            terms[count + 1] = product.error
-            count += 2
+      func append(_ part: Double, _ factor: Double) {
+        guard part != 0 && factor != 0 else { return }
+        let product = Compensated.twoProduct(part, factor)
+        terms[count] = product.product
+        terms[count + 1] = product.error
+        count += 2
+      }
+      func append(_ axis: (head: S, tail: S, parts: [Double]), _ d: Pair) {
+        if axis.parts.isEmpty {
+          for part in [Double(axis.head), Double(axis.tail)] {
+            append(part, d.sum)
+            append(part, d.error)
+          }
+        } else {
+          for part in axis.parts {
+            append(part, d.sum)
+            append(part, d.error)
           }
         }
       }
+      append(x, offset.0)
+      append(y, offset.1)
+      append(z, offset.2)
       return CameraRelative.roundedSum(
         UnsafeMutableBufferPointer(rebasing: terms[0..<count]))
     }
+    let normal = Vector3(x.head, y.head, z.head)
+    let tail = Vector3(x.tail, y.tail, z.tail)
     return Exact(
       normal: normal, normalTail: tail, distance: distance,
       isAxisAligned: tail == .zero
