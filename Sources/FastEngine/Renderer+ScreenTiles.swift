@@ -143,17 +143,27 @@ extension Renderer {
       let permuted = PermutedTriangle(
         prepared[Int(entry.firstRow) * tileWidth + Int(entry.firstColumn)],
         record.v0, record.v1, record.v2)
+      // The triangles whose t comes from their exact planes in a loop of
+      // their own, so that the others' loop is the one it was.
+      if let exact {
+        eachRay { slot in
+          searches[slot].test(.triangle(index)) {
+            guard
+              let hit = TriangleIntersection.intersect(
+                prepared[slot], permuted, plane: exact, after: 0, before: $0)
+            else { return nil }
+            weights[slot] = TriangleWeights(u: hit.u, v: hit.v, w: hit.w)
+            return hit.t
+          }
+        }
+        return
+      }
       eachRay { slot in
         searches[slot].test(.triangle(index)) {
-          let found =
-            if let exact {
-              TriangleIntersection.intersect(
-                prepared[slot], permuted, plane: exact, after: 0, before: $0)
-            } else {
-              TriangleIntersection.intersect(
-                prepared[slot], permuted, after: 0, before: $0)
-            }
-          guard let hit = found else { return nil }
+          guard
+            let hit = TriangleIntersection.intersect(
+              prepared[slot], permuted, after: 0, before: $0)
+          else { return nil }
           weights[slot] = TriangleWeights(u: hit.u, v: hit.v, w: hit.w)
           return hit.t
         }
