@@ -73,11 +73,13 @@ extension TrianglePlane {
   /// Whether the watertight t of the triangle with vertices `relative`
   /// (relative to the eye, as the records hold them) may be off by more
   /// than `conditionLimit` ε: the estimate above, from the rounded
-  /// vertices, in their own precision and in squares (no square root or
-  /// conversion: it runs for every triangle of every mesh), after a power
-  /// of two brings the largest coordinate to [1, 2) (exact, and every
-  /// square then in range; one that underflows to zero asks for the exact
-  /// plane, which settles it). The distance is bounded below by the larger
+  /// vertices, in their own precision and in squares (no square root,
+  /// conversion or scaling: it runs for every triangle of every mesh).
+  /// Each quotient is formed so that its intermediates stay within the
+  /// lengths' squares: in range for a compiled scene, whose lengths
+  /// `LengthScale` keeps within 2^±(E/4) of 1; a square that underflows to
+  /// zero (a sliver near that window's small end) asks for the exact
+  /// plane, which settles it. The distance is bounded below by the larger
   /// of the plane's distance and the gap between the eye and the
   /// triangle's box (in max-norm, never more than the true distance), so a
   /// triangle seen edge-on from afar is not taken for a large one.
@@ -85,22 +87,15 @@ extension TrianglePlane {
   public static func needsExactT<S: RayScalar>(
     relative: (Vector3<S>, Vector3<S>, Vector3<S>)
   ) -> Bool {
-    let largest = Swift.max(
-      relative.0.maxMagnitude, relative.1.maxMagnitude,
-      relative.2.maxMagnitude)
-    guard largest > 0, largest.isFinite else { return false }
-    let scale = S(sign: .plus, exponent: -largest.exponent, significand: 1)
-    let a = relative.0 * scale
-    let b = relative.1 * scale
-    let c = relative.2 * scale
+    let (a, b, c) = relative
     let (e1, e2, e3) = (b - a, c - a, c - b)
     let cross = e1.cross(e2)
     let crossSquared = cross.lengthSquared
-    guard crossSquared > 0 else { return true }
+    guard crossSquared > 0 else { return crossSquared == 0 }
     let longestSquared = Swift.max(
       e1.lengthSquared, e2.lengthSquared, e3.lengthSquared)
     let k = cross.dot(a)
-    let planeDistanceSquared = k * k / crossSquared
+    let planeDistanceSquared = (k / crossSquared) * k
     @inline(__always) func gap(_ p: S, _ q: S, _ r: S) -> S {
       let (low, high) = (Swift.min(p, q, r), Swift.max(p, q, r))
       return low > 0 ? low : (high < 0 ? -high : 0)
@@ -109,10 +104,10 @@ extension TrianglePlane {
       gap(a.x, b.x, c.x), gap(a.y, b.y, c.y), gap(a.z, b.z, c.z))
     let nearSquared = Swift.max(planeDistanceSquared, boxGap * boxGap)
     // (longest² / twice the area)² · max(1, longest² / near²) > limit².
-    let thinnessSquared = longestSquared * longestSquared / crossSquared
+    let thinnessSquared = (longestSquared / crossSquared) * longestSquared
     let reachSquared = longestSquared / nearSquared
-    let limit = S(conditionLimit)
-    return thinnessSquared * Swift.max(1, reachSquared) > limit * limit
+    return thinnessSquared * Swift.max(1, reachSquared)
+      > S(conditionLimit * conditionLimit)
   }
 
   /// The exact plane of the triangle (v0, v1, v2) seen from `origin`
