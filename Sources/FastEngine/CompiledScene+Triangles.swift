@@ -85,7 +85,9 @@ extension CompiledScene {
   }
 
   /// Offers the ordinary triangles' hits to `nearest`: through the
-  /// hierarchy when there is one, else each in order.
+  /// hierarchy when there is one, else each in order; the leaves that
+  /// take some triangles' t from their exact planes only in scenes that
+  /// have such triangles.
   @inline(__always)
   func testOrdinaryTriangles(
     _ ray: CameraRay<Scalar>, _ prepared: WatertightRay<Scalar>,
@@ -96,21 +98,8 @@ extension CompiledScene {
       return
     }
     triangles.withUnsafeBufferPointer { records in
-      if let triangleHierarchy {
-        let leaves = TriangleLeaves(records: records, ray: prepared)
-        if let hit = triangleHierarchy.nearest(
-          ray, before: nearest.t, leaves: leaves,
-          wide: wideTriangleHierarchy)
-        {
-          nearest.test(.triangle(hit.index)) { _ in hit.t }
-        }
-      } else {
-        for index in 0..<ordinaryTriangleCount {
-          nearest.test(.triangle(index)) {
-            records[index].intersect(prepared, before: $0)?.t
-          }
-        }
-      }
+      testTriangles(
+        ray, TriangleLeaves(records: records, ray: prepared), &nearest)
     }
   }
 
@@ -124,24 +113,32 @@ extension CompiledScene {
     triangles.withUnsafeBufferPointer { records in
       exactPlaneIndices.withUnsafeBufferPointer { indices in
         exactPlanes.withUnsafeBufferPointer { planes in
-          let leaves = PlanedTriangleLeaves(
-            records: records, planeIndices: indices, planes: planes,
-            ray: prepared)
-          if let triangleHierarchy {
-            if let hit = triangleHierarchy.nearest(
-              ray, before: nearest.t, leaves: leaves,
-              wide: wideTriangleHierarchy)
-            {
-              nearest.test(.triangle(hit.index)) { _ in hit.t }
-            }
-          } else {
-            for index in 0..<ordinaryTriangleCount {
-              nearest.test(.triangle(index)) {
-                leaves.intersect(index, before: $0)
-              }
-            }
-          }
+          testTriangles(
+            ray,
+            PlanedTriangleLeaves(
+              records: records, planeIndices: indices, planes: planes,
+              ray: prepared), &nearest)
         }
+      }
+    }
+  }
+
+  /// The ordinary triangles of `leaves` searched through the hierarchy
+  /// when there is one, else each in order.
+  @inline(__always)
+  func testTriangles<Leaves: LeafPrimitives>(
+    _ ray: CameraRay<Scalar>, _ leaves: Leaves,
+    _ nearest: inout NearestHit<Scalar, Nearest>
+  ) where Leaves.Scalar == Scalar {
+    if let triangleHierarchy {
+      if let hit = triangleHierarchy.nearest(
+        ray, before: nearest.t, leaves: leaves, wide: wideTriangleHierarchy)
+      {
+        nearest.test(.triangle(hit.index)) { _ in hit.t }
+      }
+    } else {
+      for index in 0..<ordinaryTriangleCount {
+        nearest.test(.triangle(index)) { leaves.intersect(index, before: $0) }
       }
     }
   }
