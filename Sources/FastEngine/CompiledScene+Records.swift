@@ -147,14 +147,17 @@ struct PlanedTriangleLeaves<Scalar: RayScalar>: LeafPrimitives {
   let planes: UnsafeBufferPointer<TrianglePlane.Exact<Scalar>>
   let ray: WatertightRay<Scalar>
 
+  /// The plane's index is read only for rays that reach the triangle.
   @inline(__always)
   func intersect(_ position: Int, before tMax: Scalar) -> Scalar? {
-    let plane = planeIndices[position]
-    guard plane >= 0 else {
-      return records[position].intersect(ray, before: tMax)?.t
-    }
-    return records[position].intersect(
-      ray, plane: planes[Int(plane)], before: tMax)?.t
+    let record = records[position]
+    return TriangleIntersection.intersect(
+      ray, PermutedTriangle(ray, record.v0, record.v1, record.v2), after: 0,
+      before: tMax
+    ) {
+      let plane = planeIndices[position]
+      return plane >= 0 ? planes[Int(plane)] : nil
+    }?.t
   }
 }
 

@@ -65,17 +65,7 @@ public enum TriangleIntersection {
     _ ray: WatertightRay<S>, _ triangle: PermutedTriangle<S>,
     after tMin: S, before tMax: S
   ) -> (t: S, u: S, v: S, w: S)? {
-    guard let edges = edgeFunctions(ray, triangle) else { return nil }
-    let (u, v, w) = (edges.u, edges.v, edges.w)
-    let determinant = u + v + w
-    guard determinant != 0 else { return nil }
-    let scaledT =
-      u * (ray.shearZ * edges.az) + v * (ray.shearZ * edges.bz)
-      + w * (ray.shearZ * edges.cz)
-    let t = scaledT / determinant
-    guard t > tMin && t < tMax else { return nil }
-    let inverse = 1 / determinant
-    return (t, u * inverse, v * inverse, w * inverse)
+    intersect(ray, triangle, after: tMin, before: tMax) { nil }
   }
 
   /// `intersect` for a triangle whose t comes from its exact plane
@@ -87,12 +77,37 @@ public enum TriangleIntersection {
     _ ray: WatertightRay<S>, _ triangle: PermutedTriangle<S>,
     plane: TrianglePlane.Exact<S>, after tMin: S, before tMax: S
   ) -> (t: S, u: S, v: S, w: S)? {
+    intersect(ray, triangle, after: tMin, before: tMax) { plane }
+  }
+
+  /// `intersect` with t from the plane `exactPlane` gives, asked only once
+  /// the edge functions say the ray's line meets the triangle (so a search
+  /// looks up a triangle's plane for the few rays that reach it), or the
+  /// watertight test's t when it gives none.
+  @inlinable @inline(__always)
+  public static func intersect<S: RayScalar>(
+    _ ray: WatertightRay<S>, _ triangle: PermutedTriangle<S>,
+    after tMin: S, before tMax: S,
+    exactPlane: () -> TrianglePlane.Exact<S>?
+  ) -> (t: S, u: S, v: S, w: S)? {
     guard let edges = edgeFunctions(ray, triangle) else { return nil }
     let (u, v, w) = (edges.u, edges.v, edges.w)
     let determinant = u + v + w
-    guard determinant != 0,
-      let t = plane.t(direction: ray.direction, after: tMin, before: tMax)
-    else { return nil }
+    guard determinant != 0 else { return nil }
+    let t: S
+    if let plane = exactPlane() {
+      guard
+        let planeT = plane.t(
+          direction: ray.direction, after: tMin, before: tMax)
+      else { return nil }
+      t = planeT
+    } else {
+      let scaledT =
+        u * (ray.shearZ * edges.az) + v * (ray.shearZ * edges.bz)
+        + w * (ray.shearZ * edges.cz)
+      t = scaledT / determinant
+      guard t > tMin && t < tMax else { return nil }
+    }
     let inverse = 1 / determinant
     return (t, u * inverse, v * inverse, w * inverse)
   }
