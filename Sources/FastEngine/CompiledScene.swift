@@ -57,7 +57,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   var triangleHierarchy: BoundingVolumeHierarchy<Scalar>?
   var wideTriangleHierarchy: WideHierarchy<Scalar>?
   /// Spheres under transforms that are not similarities.
-  var ellipsoids: [EllipsoidRecord<Kernel>] = []
+  var ellipsoids: [Kernel.EllipsoidRecord] = []
   var ellipsoidMaterials: [Int32] = []
   /// Shapes of kinds the engine does not specialise, in the world's units,
   /// each tested through its own `Hittable.intersect` after a check of its
@@ -233,18 +233,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       buildTriangleHierarchy()
     }
     for ellipsoid in all.transformedSpheres {
-      let objectEye = ellipsoid.inverse.transformPoint(eye)
-      let inverse = Matrix4<Scalar>(ellipsoid.inverse)
-      ellipsoids.append(
-        EllipsoidRecord(
-          sphere: Kernel.makeSphere(ellipsoid.sphere, eye: objectEye),
-          origin: Kernel.frameOrigin(eye: objectEye),
-          inverseRows: (
-            Vector3(inverse.m00, inverse.m01, inverse.m02),
-            Vector3(inverse.m10, inverse.m11, inverse.m12),
-            Vector3(inverse.m20, inverse.m21, inverse.m22)
-          ),
-          matrix: Matrix4<Scalar>(ellipsoid.matrix)))
+      ellipsoids.append(Kernel.makeEllipsoid(ellipsoid, eye: eye))
       ellipsoidMaterials.append(
         Int32(truncatingIfNeeded: ellipsoid.sphere.materialIndex))
     }
@@ -351,9 +340,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   ) {
     for index in ellipsoids.indices {
       nearest.test(.ellipsoid(index)) {
-        Kernel.intersect(
-          ellipsoids[index].sphere, ellipsoids[index].localRay(ray),
-          before: $0)
+        Kernel.intersect(ellipsoids[index], ray, before: $0)
       }
     }
     if !shapes.isEmpty { testShapes(ray, &nearest) }
@@ -378,9 +365,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
           of: ray, normals: vertexNormals(ofTriangle: index))
       }
     case .ellipsoid(let index):
-      ellipsoids[index].matrix.transformNormal(
-        Kernel.normal(
-          ellipsoids[index].sphere, ellipsoids[index].localRay(ray), t: t))
+      Kernel.normal(ellipsoids[index], ray, t: t)
     case .shape(let index):
       Vector3(shapeHit(index, ray)?.normal ?? .zero)
     }

@@ -54,12 +54,30 @@ public struct TransformedSphere<Scalar: RayScalar>: Hashable, Sendable {
 }
 
 extension TransformedSphere: Intersectable {
-  /// The course's way: the ray taken into the sphere's space by M⁻¹, the
+  /// The stable method: the ellipsoid in the frame of its axes as seen
+  /// from the ray's origin (`EllipsoidFrame`, its constants in
+  /// DoubleDouble from the Double matrix), tMin ≥ 0. The naive method, the
+  /// course's way: the ray taken into the sphere's space by M⁻¹, the
   /// sphere's normal brought back by the inverse transpose.
   public func intersect(
     _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar,
     method: IntersectionMethod
   ) -> Hit<Scalar>? {
+    if method == .stable {
+      let placed = TransformedSphere<Double>(
+        sphere: Sphere(
+          center: Vector3(sphere.center), radius: Double(sphere.radius),
+          materialIndex: sphere.materialIndex),
+        matrix: Matrix4(matrix), inverse: Matrix4(inverse))
+      let frame = EllipsoidFrame<Scalar>(placed, eye: Vector3(ray.origin))
+      guard
+        let t = frame.root(
+          direction: ray.direction, after: tMin, before: tMax)
+      else { return nil }
+      return Hit(
+        t: t, normal: frame.normal(direction: ray.direction, t: t),
+        materialIndex: sphere.materialIndex)
+    }
     let local = Ray(
       origin: inverse.transformPoint(ray.origin),
       direction: inverse.transformDirection(ray.direction))

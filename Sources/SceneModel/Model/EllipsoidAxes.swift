@@ -1,0 +1,163 @@
+/// The principal axes of an ellipsoid M·{P : |P − c| = r}: the world unit
+/// directions u₀, u₁, u₂ and the semi-axis lengths A₀, A₁, A₂, so that a
+/// world point X lies on it exactly when Σⱼ (uⱼ·(X − C) / Aⱼ)² = 1, with
+/// C = M·c its centre. They are the singular value decomposition
+/// L = U·diag(σ)·Vᵀ of the matrix's linear part L (Aⱼ = σⱼ·r, uⱼ the
+/// columns of U), computed in DoubleDouble once per ellipsoid.
+///
+/// In this frame a ray's direction d becomes (uⱼ·d / Aⱼ)ⱼ: one dot product
+/// of unit vectors and one quotient per axis, each accurate to a few ulps
+/// of |d|/Aⱼ, as if d had moved by a few ulps, however flat the ellipsoid.
+/// The rows of L⁻¹ (the course's way) mix the axes' scales: each row's dot
+/// product with d loses ε·|d|/A_min, and the thin axis of a disc of aspect
+/// 10⁸ swamps every digit of the other two in Float.
+///
+/// Accuracy. One-sided Jacobi (Hestenes: plane rotations applied to the
+/// columns of G until they are orthogonal, G·V = U·diag(σ)) on G = L when
+/// its columns carry its scales (L = B·D, B well conditioned, as for a
+/// scale followed by a rotation), on G = Lᵀ when its rows do (a rotation
+/// followed by a scale), whichever equilibrates better (`prefersRows`). In
+/// those cases Jacobi is relatively accurate (Demmel and Veselić, "Jacobi's
+/// method is more accurate than QR", SIAM J. Matrix Anal. Appl. 13(4),
+/// 1992): every σⱼ and every well separated axis to a few units of 2⁻¹⁰⁴
+/// relative, the smallest as well as the largest. A matrix scaled on both
+/// sides (rotation, scale, rotation) holds each σⱼ to 2⁻¹⁰⁴·σ_max, which is
+/// still below Double's rounding of its entries while σ_max/σ_min < 2⁵⁰.
+/// Each rotation is found from the columns divided by powers of two
+/// (exact), so no square leaves Double's range at any aspect.
+public struct EllipsoidAxes: Sendable {
+  /// u₀, u₁, u₂: orthonormal to a few units of 2⁻¹⁰⁴.
+  public var directions: [Vector3<DoubleDouble>]
+  /// A₀, A₁, A₂ > 0: the semi-axes, in the world's units.
+  public var lengths: [DoubleDouble]
+  /// C = M·c, the centre in the world.
+  public var center: Vector3<DoubleDouble>
+
+  /// The axes of `sphere` placed by `matrix` (affine); nil when a
+  /// semi-axis is zero or not finite.
+  public init?(matrix m: Matrix4<Double>, sphere: Sphere<Double>) {
+    typealias DD = DoubleDouble
+    let rows = [
+      Vector3(DD(m.m00), DD(m.m01), DD(m.m02)),
+      Vector3(DD(m.m10), DD(m.m11), DD(m.m12)),
+      Vector3(DD(m.m20), DD(m.m21), DD(m.m22)),
+    ]
+    let columns = (0..<3).map { j in
+      Vector3(rows[0][j], rows[1][j], rows[2][j])
+    }
+    let c = Vector3<DD>(sphere.center)
+    center = Vector3(
+      DD(m.m03) + rows[0].dot(c), DD(m.m13) + rows[1].dot(c),
+      DD(m.m23) + rows[2].dot(c))
+    let radius = DD(sphere.radius)
+    let identity = [
+      Vector3<DD>(1, 0, 0), Vector3<DD>(0, 1, 0), Vector3<DD>(0, 0, 1),
+    ]
+    // L·V = W (columns) or Lᵀ·V = W (rows): L = Ŵ·diag|w|·Vᵀ or
+    // V·diag|w|·Ŵᵀ; the world axes are Ŵ's columns or V's.
+    let useRows = Self.prefersRows(rows: rows, columns: columns)
+    var w = useRows ? rows : columns
+    var v = identity
+    Self.orthogonalize(&w, accumulating: &v)
+    var directions: [Vector3<DD>] = []
+    var lengths: [DD] = []
+    for j in 0..<3 {
+      let length = Self.length(w[j])
+      guard length > 0, length.isFinite else { return nil }
+      directions.append(useRows ? v[j] : w[j] / length)
+      lengths.append(length * radius)
+    }
+    guard lengths.allSatisfy({ $0 > 0 && $0.isFinite }) else { return nil }
+    self.directions = directions
+    self.lengths = lengths
+  }
+
+  /// Whether L's rows carry its scales rather than its columns: the
+  /// determinant of L with its rows made unit is larger than with its
+  /// columns made unit (1 for orthogonal ones, near 0 for the other side
+  /// of a strongly scaled matrix).
+  static func prefersRows(
+    rows: [Vector3<DoubleDouble>], columns: [Vector3<DoubleDouble>]
+  ) -> Bool {
+    func unitDeterminant(_ vectors: [Vector3<DoubleDouble>]) -> DoubleDouble {
+      let unit = vectors.map { $0 / length($0) }
+      return unit[0].dot(unit[1].cross(unit[2])).magnitude
+    }
+    return unitDeterminant(rows) > unitDeterminant(columns)
+  }
+
+  /// 2^e as a DoubleDouble, exact for e within Double's normal range;
+  /// zero below it.
+  static func power(_ e: Int) -> DoubleDouble {
+    guard e >= Double.leastNormalMagnitude.exponent else { return 0 }
+    return DoubleDouble(Double(sign: .plus, exponent: e, significand: 1))
+  }
+
+  /// The exponent of the largest component's magnitude (0 for zero).
+  static func exponent(_ v: Vector3<DoubleDouble>) -> Int {
+    let largest = v.maxMagnitude
+    return largest > 0 ? largest.exponent : 0
+  }
+
+  /// |v| with v divided by a power of two first, so that its square
+  /// neither overflows nor underflows.
+  static func length(_ v: Vector3<DoubleDouble>) -> DoubleDouble {
+    let e = exponent(v)
+    return (v * power(-e)).length * power(e)
+  }
+
+  /// Rotates pairs of `columns` until they are orthogonal to the working
+  /// precision (one-sided Jacobi), applying each rotation to
+  /// `accumulated` too.
+  static func orthogonalize(
+    _ columns: inout [Vector3<DoubleDouble>],
+    accumulating accumulated: inout [Vector3<DoubleDouble>]
+  ) {
+    typealias DD = DoubleDouble
+    // Orthogonal once the cosine of each pair's angle is below 2⁻¹⁰⁸:
+    // within the rounding of the columns themselves. Jacobi converges
+    // quadratically; 3×3 matrices take 3 to 5 sweeps.
+    let tolerance = DD(0x1p-108)
+    for _ in 0..<32 {
+      var rotated = false
+      for (i, j) in [(0, 1), (0, 2), (1, 2)] {
+        let (ei, ej) = (exponent(columns[i]), exponent(columns[j]))
+        let bi = columns[i] * power(-ei)
+        let bj = columns[j] * power(-ej)
+        let (alpha, beta, gamma) = (
+          bi.lengthSquared, bj.lengthSquared, bi.dot(bj)
+        )
+        guard gamma.magnitude > tolerance * (alpha * beta).squareRoot()
+        else { continue }
+        // η = 2γ/(β − α) of the unscaled columns (α = 4^ei·α′,
+        // β = 4^ej·β′, γ = 2^(ei+ej)·γ′), written with ρ = 2^−|ei−ej| ≤ 1
+        // so that nothing overflows; the rotation's tangent is then
+        // t = η / (1 + √(1 + η²)), the smaller root of t² + (2/η)t − 1.
+        let eta: DD
+        if ei >= ej {
+          let rho = power(ej - ei)
+          eta = 2 * gamma * rho / (beta * rho * rho - alpha)
+        } else {
+          let rho = power(ei - ej)
+          eta = 2 * gamma * rho / (beta - alpha * rho * rho)
+        }
+        let t: DD =
+          eta.isFinite
+          ? eta / (1 + (1 + eta * eta).squareRoot())
+          : (gamma > 0 ? 1 : -1)
+        guard t != 0 else { continue }
+        let cosine = 1 / (1 + t * t).squareRoot()
+        let sine = cosine * t
+        func rotate(_ vectors: inout [Vector3<DD>]) {
+          let (a, b) = (vectors[i], vectors[j])
+          vectors[i] = a * cosine - b * sine
+          vectors[j] = a * sine + b * cosine
+        }
+        rotate(&columns)
+        rotate(&accumulated)
+        rotated = true
+      }
+      if !rotated { return }
+    }
+  }
+}
