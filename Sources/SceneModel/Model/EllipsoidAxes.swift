@@ -109,6 +109,16 @@ public struct EllipsoidAxes: Sendable {
   /// Rotates pairs of `columns` until they are orthogonal to the working
   /// precision (one-sided Jacobi), applying each rotation to
   /// `accumulated` too.
+  ///
+  /// Each rotation is found and applied with the columns' scales apart:
+  /// with cᵢ = 2^eᵢ·bᵢ (bᵢ near unit, the power of two exact) and
+  /// ρ = 2^−|eᵢ−eⱼ| ≤ 1, the tangent t = η/(1 + √(1 + η²)) of the angle
+  /// that makes cᵢ and cⱼ orthogonal (η = 2γ/(β − α), α = |cᵢ|², β = |cⱼ|²,
+  /// γ = cᵢ·cⱼ) is t = τ·ρ with τ from the scaled columns alone, and the
+  /// rotated columns are cos·(cᵢ − τ·(ρ·cⱼ)) and cos·(cⱼ + τ·(ρ·cᵢ)): no
+  /// square and no t leaves the normal range at any aspect, where t itself
+  /// (ρ·γ/α ≈ 2⁻¹⁰⁰⁰ at an aspect of 10³⁰⁰) would be subnormal and lose the
+  /// rotation's digits.
   static func orthogonalize(
     _ columns: inout [Vector3<DoubleDouble>],
     accumulating accumulated: inout [Vector3<DoubleDouble>]
@@ -129,29 +139,21 @@ public struct EllipsoidAxes: Sendable {
         )
         guard gamma.magnitude > tolerance * (alpha * beta).squareRoot()
         else { continue }
-        // η = 2γ/(β − α) of the unscaled columns (α = 4^ei·α′,
-        // β = 4^ej·β′, γ = 2^(ei+ej)·γ′), written with ρ = 2^−|ei−ej| ≤ 1
-        // so that nothing overflows; the rotation's tangent is then
-        // t = η / (1 + √(1 + η²)), the smaller root of t² + (2/η)t − 1.
-        let eta: DD
-        if ei >= ej {
-          let rho = power(ej - ei)
-          eta = 2 * gamma * rho / (beta * rho * rho - alpha)
-        } else {
-          let rho = power(ei - ej)
-          eta = 2 * gamma * rho / (beta - alpha * rho * rho)
-        }
-        let t: DD =
-          eta.isFinite
-          ? eta / (1 + (1 + eta * eta).squareRoot())
-          : (gamma > 0 ? 1 : -1)
-        guard t != 0 else { continue }
-        let cosine = 1 / (1 + t * t).squareRoot()
-        let sine = cosine * t
+        // β − α = 4^max(eᵢ,eⱼ)·(denominator), 2γ = 2·4^max·ρ·γ′.
+        let rho = power(-abs(ei - ej))
+        let denominator =
+          ei >= ej ? beta * rho * rho - alpha : beta - alpha * rho * rho
+        let q = 2 * gamma / denominator
+        let tau: DD =
+          q.isFinite
+          ? q / (1 + (1 + q * rho * q * rho).squareRoot())
+          : (gamma > 0 ? 1 : -1) / rho
+        guard tau != 0 else { continue }
+        let cosine = 1 / (1 + tau * rho * tau * rho).squareRoot()
         func rotate(_ vectors: inout [Vector3<DD>]) {
           let (a, b) = (vectors[i], vectors[j])
-          vectors[i] = a * cosine - b * sine
-          vectors[j] = a * sine + b * cosine
+          vectors[i] = (a - (b * rho) * tau) * cosine
+          vectors[j] = (b + (a * rho) * tau) * cosine
         }
         rotate(&columns)
         rotate(&accumulated)
