@@ -13,18 +13,19 @@
 /// 10⁸ swamps every digit of the other two in Float.
 ///
 /// Accuracy. One-sided Jacobi (Hestenes: plane rotations applied to the
-/// columns of G until they are orthogonal, G·V = U·diag(σ)) on G = L when
-/// its columns carry its scales (L = B·D, B well conditioned, as for a
-/// scale followed by a rotation), on G = Lᵀ when its rows do (a rotation
-/// followed by a scale), whichever equilibrates better (`prefersRows`). In
-/// those cases Jacobi is relatively accurate (Demmel and Veselić, "Jacobi's
-/// method is more accurate than QR", SIAM J. Matrix Anal. Appl. 13(4),
-/// 1992): every σⱼ and every well separated axis to a few units of 2⁻¹⁰⁴
-/// relative, the smallest as well as the largest. A matrix scaled on both
-/// sides (rotation, scale, rotation) holds each σⱼ to 2⁻¹⁰⁴·σ_max, which is
-/// still below Double's rounding of its entries while σ_max/σ_min < 2⁵⁰.
-/// Each rotation is found from the columns divided by powers of two
-/// (exact), so no square leaves Double's range at any aspect.
+/// columns of L until they are orthogonal, L·V = U·diag(σ)) in
+/// DoubleDouble, each rotation found from its two columns divided by powers
+/// of two (exact) and stopped when every pair's cosine is below 2⁻¹⁰⁸. For
+/// L = B·D (the columns carry the scales, B well conditioned: a scale
+/// followed by a rotation) it is relatively accurate (Demmel and Veselić,
+/// "Jacobi's method is more accurate than QR", SIAM J. Matrix Anal. Appl.
+/// 13(4), 1992); measured against L's exact invariants, so it is for
+/// L = D·B (a rotation followed by a scale) too: every σⱼ, the smallest as
+/// well as the largest, within 2⁻¹⁰¹ relative, and every axis an
+/// eigenvector of LLᵀ within 2⁻¹⁰³·σ_max², at every aspect up to 10³⁰⁰
+/// (`EllipsoidAxesTests`). A matrix whose own rounding leaves it
+/// ill-conditioned without a scaling is held to 2⁻¹⁰⁴·σ_max, below
+/// Double's rounding of its entries while σ_max/σ_min < 2⁵⁰.
 public struct EllipsoidAxes: Sendable {
   /// u₀, u₁, u₂: orthonormal to a few units of 2⁻¹⁰⁴.
   public var directions: [Vector3<DoubleDouble>]
@@ -50,40 +51,21 @@ public struct EllipsoidAxes: Sendable {
       DD(m.m03) + rows[0].dot(c), DD(m.m13) + rows[1].dot(c),
       DD(m.m23) + rows[2].dot(c))
     let radius = DD(sphere.radius)
-    let identity = [
-      Vector3<DD>(1, 0, 0), Vector3<DD>(0, 1, 0), Vector3<DD>(0, 0, 1),
-    ]
-    // L·V = W (columns) or Lᵀ·V = W (rows): L = Ŵ·diag|w|·Vᵀ or
-    // V·diag|w|·Ŵᵀ; the world axes are Ŵ's columns or V's.
-    let useRows = Self.prefersRows(rows: rows, columns: columns)
-    var w = useRows ? rows : columns
-    var v = identity
-    Self.orthogonalize(&w, accumulating: &v)
+    // L·V = W with orthogonal columns: L = Ŵ·diag|w|·Vᵀ, the world axes
+    // are Ŵ's columns.
+    var w = columns
+    Self.orthogonalize(&w)
     var directions: [Vector3<DD>] = []
     var lengths: [DD] = []
     for j in 0..<3 {
       let length = Self.length(w[j])
       guard length > 0, length.isFinite else { return nil }
-      directions.append(useRows ? v[j] : w[j] / length)
+      directions.append(w[j] / length)
       lengths.append(length * radius)
     }
     guard lengths.allSatisfy({ $0 > 0 && $0.isFinite }) else { return nil }
     self.directions = directions
     self.lengths = lengths
-  }
-
-  /// Whether L's rows carry its scales rather than its columns: the
-  /// determinant of L with its rows made unit is larger than with its
-  /// columns made unit (1 for orthogonal ones, near 0 for the other side
-  /// of a strongly scaled matrix).
-  static func prefersRows(
-    rows: [Vector3<DoubleDouble>], columns: [Vector3<DoubleDouble>]
-  ) -> Bool {
-    func unitDeterminant(_ vectors: [Vector3<DoubleDouble>]) -> DoubleDouble {
-      let unit = vectors.map { $0 / length($0) }
-      return unit[0].dot(unit[1].cross(unit[2])).magnitude
-    }
-    return unitDeterminant(rows) > unitDeterminant(columns)
   }
 
   /// 2^e as a DoubleDouble, exact for e within Double's normal range;
@@ -107,8 +89,7 @@ public struct EllipsoidAxes: Sendable {
   }
 
   /// Rotates pairs of `columns` until they are orthogonal to the working
-  /// precision (one-sided Jacobi), applying each rotation to
-  /// `accumulated` too.
+  /// precision (one-sided Jacobi).
   ///
   /// Each rotation is found and applied with the columns' scales apart:
   /// with cᵢ = 2^eᵢ·bᵢ (bᵢ near unit, the power of two exact) and
@@ -119,10 +100,7 @@ public struct EllipsoidAxes: Sendable {
   /// square and no t leaves the normal range at any aspect, where t itself
   /// (ρ·γ/α ≈ 2⁻¹⁰⁰⁰ at an aspect of 10³⁰⁰) would be subnormal and lose the
   /// rotation's digits.
-  static func orthogonalize(
-    _ columns: inout [Vector3<DoubleDouble>],
-    accumulating accumulated: inout [Vector3<DoubleDouble>]
-  ) {
+  static func orthogonalize(_ columns: inout [Vector3<DoubleDouble>]) {
     typealias DD = DoubleDouble
     // Orthogonal once the cosine of each pair's angle is below 2⁻¹⁰⁸:
     // within the rounding of the columns themselves. Jacobi converges
@@ -150,13 +128,9 @@ public struct EllipsoidAxes: Sendable {
           : (gamma > 0 ? 1 : -1) / rho
         guard tau != 0 else { continue }
         let cosine = 1 / (1 + tau * rho * tau * rho).squareRoot()
-        func rotate(_ vectors: inout [Vector3<DD>]) {
-          let (a, b) = (vectors[i], vectors[j])
-          vectors[i] = (a - (b * rho) * tau) * cosine
-          vectors[j] = (b + (a * rho) * tau) * cosine
-        }
-        rotate(&columns)
-        rotate(&accumulated)
+        let (a, b) = (columns[i], columns[j])
+        columns[i] = (a - (b * rho) * tau) * cosine
+        columns[j] = (b + (a * rho) * tau) * cosine
         rotated = true
       }
       if !rotated { return }

@@ -31,6 +31,29 @@ struct EllipsoidCase: CustomStringConvertible {
       """
   }
 
+  /// The ellipsoid's axes in the world, from the operations before the
+  /// Scale (those that turn the scaled sphere), in Double: only the
+  /// conditioning's perturbations use them, never the exact intersection.
+  var axes: [Vector3<Double>] {
+    var turn = Matrix4<Double>.identity
+    for operation in operations {
+      let words = operation.split(separator: " ")
+      guard let angle = words.count == 2 ? Double(words[1]) : nil else {
+        if words.first == "Scale" { break }
+        continue
+      }
+      switch words[0] {
+      case "XRotate": turn = turn * .rotationX(degrees: angle)
+      case "YRotate": turn = turn * .rotationY(degrees: angle)
+      case "ZRotate": turn = turn * .rotationZ(degrees: angle)
+      default: break
+      }
+    }
+    return [Vector3(1, 0, 0), Vector3(0, 1, 0), Vector3(0, 0, 1)].map {
+      turn.transformDirection($0).normalized()
+    }
+  }
+
   func scene(_ precision: Precision) throws -> Scene {
     try SceneParser.parse(
       text, file: "\(name).txt",
@@ -84,11 +107,13 @@ struct EllipsoidAccuracy: CustomStringConvertible {
     x < 100 ? String(format: "%.2f", x) : String(format: "%.3g", x)
   }
 
-  /// Renders `scene` (one ellipsoid) at `width`×`height` with
+  /// Renders `test` (one ellipsoid) at `width`×`height` with
   /// `CompiledScene<StableKernel<R>>` and measures every pixel.
   static func measure<R: RayScalar>(
-    _ scene: Scene, _: R.Type, width: Int, height: Int
+    _ test: EllipsoidCase, _: R.Type, width: Int, height: Int
   ) throws -> EllipsoidAccuracy {
+    let scene = try test.scene(R.self == Float.self ? .float : .double)
+    let axes = test.axes
     let settings = RenderSettings(
       width: width, height: height, outputs: [.depth, .normals],
       precision: R.self == Float.self ? .float : .double)
@@ -115,11 +140,11 @@ struct EllipsoidAccuracy: CustomStringConvertible {
           camera.rayDirection(x: x, rowBase: rowBase))
         let pixel = row * width + column
         result.add(
-          exact.intersect(eye: eye, direction: direction),
+          exact.intersect(eye: eye, direction: direction, axes: axes),
           t: Double(buffers.depth[pixel]),
           normal: Vector3<Double>(buffers.normals[pixel]), epsilon: epsilon,
           conditioning: {
-            exact.conditioning(eye: eye, direction: direction)
+            exact.conditioning(eye: eye, direction: direction, axes: axes)
           })
       }
     }
@@ -167,41 +192,41 @@ struct EllipsoidAccuracy: CustomStringConvertible {
 
 extension ExactEllipsoid {
   /// The relative change of t and the change of the normal's angle per
-  /// relative change of the ray's direction (|δd| = δ·|d|) or of the
-  /// eye's position relative to the ellipsoid (|δE| = δ·|C − E|), the
-  /// largest over the three axes of each, by exact intersections at
-  /// δ = 2⁻³⁰: ∞ where a perturbed ray misses.
+  /// relative change δ of the ray's direction (|δd| = δ·|d|, along each
+  /// world axis) or of the eye's offset from the centre along each of the
+  /// ellipsoid's `axes` (by δ times that offset's component: one rounding
+  /// of the ellipsoid's position as its own frame holds it), the largest
+  /// of the six, by exact intersections at δ = 2⁻³⁰: ∞ where a perturbed
+  /// ray misses.
   func conditioning(
-    eye: Vector3<Double>, direction: Vector3<Double>
+    eye: Vector3<Double>, direction: Vector3<Double>, axes: [Vector3<Double>]
   ) -> (t: Double, normal: Double) {
     let delta = 0x1p-30
-    let base = intersect(eye: eye, direction: direction)
+    let base = intersect(eye: eye, direction: direction, axes: axes)
     guard let t = base.t, let normal = base.normal else {
       return (.infinity, .infinity)
     }
-    let offset = distanceToCenter(eye: eye)
+    let offset = offsetFromEye(eye)
     var worst = (t: 0.0, normal: 0.0)
-    let axes = [Vector3<Double>(1, 0, 0), Vector3(0, 1, 0), Vector3(0, 0, 1)]
-    for axis in axes {
-      for (e, d) in [
-        (eye, direction + axis * (delta * direction.length)),
-        (eye + axis * (delta * offset), direction),
-      ] {
-        let moved = intersect(eye: e, direction: d)
-        guard let movedT = moved.t, let movedNormal = moved.normal else {
-          return (.infinity, .infinity)
-        }
-        let dt = Double(((movedT - t) / t).magnitude.hi) / delta
-        let chord = Double((movedNormal - normal).length.hi)
-        worst = (Swift.max(worst.t, dt), Swift.max(worst.normal, chord / delta))
+    let world = [Vector3<Double>(1, 0, 0), Vector3(0, 1, 0), Vector3(0, 0, 1)]
+    var moves = world.map { (eye, direction + $0 * (delta * direction.length)) }
+    moves += axes.map { (eye - $0 * (delta * $0.dot(offset)), direction) }
+    for (e, d) in moves {
+      let moved = intersect(eye: e, direction: d, axes: axes)
+      guard let movedT = moved.t, let movedNormal = moved.normal else {
+        return (.infinity, .infinity)
       }
+      let dt = Double(((movedT - t) / t).magnitude.hi) / delta
+      let chord = Double((movedNormal - normal).length.hi)
+      worst = (Swift.max(worst.t, dt), Swift.max(worst.normal, chord / delta))
     }
     return worst
   }
 
-  /// |C − E| in Double.
-  func distanceToCenter(eye: Vector3<Double>) -> Double {
+  /// C − E in Double.
+  func offsetFromEye(_ eye: Vector3<Double>) -> Vector3<Double> {
     let e = [eye.x, eye.y, eye.z].map(ExactDyadic.init)
-    return Double(Self.length((0..<3).map { center[$0] - e[$0] }).value.hi)
+    let w = (0..<3).map { Double(ScaledDoubleDouble(center[$0] - e[$0]).value.hi) }
+    return Vector3(w[0], w[1], w[2])
   }
 }

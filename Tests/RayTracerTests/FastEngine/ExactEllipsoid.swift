@@ -73,15 +73,20 @@ struct ExactEllipsoid {
     var t: DoubleDouble?
     /// The outward unit normal there, each component to a few 2⁻¹⁰⁴.
     var normal: Vector3<DoubleDouble>?
-    /// |Δ| over its first-order change when d moves by |d| and w by |w|
-    /// (|∂Δ/∂d|·|d| + |∂Δ/∂w|·|w|): how many relative roundings of the
-    /// ray's direction or the ellipsoid's position away from the
-    /// silhouette the ray is. Below a few ε: the rim.
+    /// |Δ| over its first-order change when d moves by |d| and the eye's
+    /// offset w = C − E by its own component along each of the
+    /// ellipsoid's axes aⱼ (|∂Δ/∂d|·|d| + Σⱼ |∂Δ/∂w·aⱼ|·|aⱼ·w|): how many
+    /// relative roundings of the ray's direction or of the ellipsoid's
+    /// position in its own frame away from the silhouette the ray is.
+    /// Below a few ε: the rim.
     var rimDistance: Double
   }
 
-  func intersect(eye: Vector3<Double>, direction: Vector3<Double>) -> Result
-  {
+  /// The exact intersection of the ray from `eye` along `direction`;
+  /// `axes` (the ellipsoid's, roughly) only scale `rimDistance`.
+  func intersect(
+    eye: Vector3<Double>, direction: Vector3<Double>, axes: [Vector3<Double>]
+  ) -> Result {
     let e = [eye.x, eye.y, eye.z].map(Exact.init)
     let d = [direction.x, direction.y, direction.z].map(Exact.init)
     let w = (0..<3).map { center[$0] - e[$0] }
@@ -96,7 +101,7 @@ struct ExactEllipsoid {
     let a = adjugateTransposeTimes(approach)
     let rim = rimDistance(
       discriminant: discriminant, gamma: gamma, beta: beta, u: u, v: v,
-      a: a, d: d, w: w)
+      a: a, d: d, w: w, axes: axes)
     let outside = gamma.signum > 0
     guard discriminant.signum >= 0, !outside || beta.signum > 0,
       gamma.signum != 0
@@ -116,18 +121,23 @@ struct ExactEllipsoid {
       hit: true, t: t.value, normal: Self.unit(gradient), rimDistance: rim)
   }
 
-  /// |Δ| / (|∂Δ/∂d|·|d| + |∂Δ/∂w|·|w|), with ∂Δ/∂d = 2adjᵀ(βv − γu) and
-  /// ∂Δ/∂w = −2adjᵀ(αv − βu) (from ∂α/∂d = 2adjᵀu, ∂β/∂d = adjᵀv,
-  /// ∂β/∂w = adjᵀu, ∂γ/∂w = 2adjᵀv), in Double.
+  /// |Δ| / (|∂Δ/∂d|·|d| + Σⱼ |∂Δ/∂w·aⱼ|·|aⱼ·w|), with
+  /// ∂Δ/∂d = 2adjᵀ(βv − γu) and ∂Δ/∂w = −2adjᵀ(αv − βu) (from
+  /// ∂α/∂d = 2adjᵀu, ∂β/∂d = adjᵀv, ∂β/∂w = adjᵀu, ∂γ/∂w = 2adjᵀv), in
+  /// Double.
   func rimDistance(
     discriminant: Exact, gamma: Exact, beta: Exact, u: [Exact], v: [Exact],
-    a: [Exact], d: [Exact], w: [Exact]
+    a: [Exact], d: [Exact], w: [Exact], axes: [Vector3<Double>]
   ) -> Double {
     let byDirection = adjugateTransposeTimes(
       (0..<3).map { beta * v[$0] - gamma * u[$0] })
-    let sensitivity =
-      Scaled(2) * Self.length(byDirection) * Self.length(d) + Scaled(2)
-      * Self.length(a) * Self.length(w)
+    var sensitivity = Scaled(2) * Self.length(byDirection) * Self.length(d)
+    for axis in axes {
+      let along = [axis.x, axis.y, axis.z].map(Exact.init)
+      sensitivity =
+        sensitivity + Scaled(2) * Scaled(Self.dot(a, along)).magnitude
+        * Scaled(Self.dot(w, along)).magnitude
+    }
     guard !sensitivity.isZero else { return .infinity }
     let ratio = Scaled(discriminant).magnitude / sensitivity
     return Double(ratio.value.hi)
@@ -150,10 +160,4 @@ struct ExactEllipsoid {
 
 extension ScaledDoubleDouble {
   init(_ value: Int) { self.init(DoubleDouble(value)) }
-}
-
-extension ExactDyadic {
-  static func * (x: Int, y: ExactDyadic) -> ExactDyadic {
-    ExactDyadic(Double(x)) * y
-  }
 }

@@ -12,13 +12,14 @@ import XCTest
 ///   σ's apart, each relatively accurate exactly when these are;
 /// - each uⱼ is an eigenvector of LLᵀ for σⱼ²: |LLᵀuⱼ − σⱼ²uⱼ| / σ_max².
 ///
-/// Bounds: orthonormal to 2⁻¹⁰⁰; a scale and a rotation in either order
-/// (L's columns or its rows carry the scales) hold every invariant, the
+/// Bounds: orthonormal to 2⁻¹⁰⁰; a scale and a rotation in either order,
+/// or a scale on either side of a general well-conditioned matrix (L's
+/// columns or its rows carry the scales), hold every invariant, the
 /// determinant included, to 2⁻⁹⁸ relative at every aspect up to 10³⁰⁰
-/// (DoubleDouble's few units of 2⁻¹⁰⁴, measured below 2⁻¹⁰²); a scale
-/// between two rotations holds the σ's only to 2⁻¹⁰⁴·σ_max, so its
-/// determinant to 2⁻⁹⁸·σ_max/σ_min; the residuals are within 2⁻⁹⁸ in all
-/// cases.
+/// (DoubleDouble's few units of 2⁻¹⁰⁴: measured at most 2⁻¹⁰¹·⁶); a
+/// scale between two rotations is held to 2⁻¹⁰⁴·σ_max, so its determinant
+/// to 2⁻⁹⁸·σ_max/σ_min; the residuals are within 2⁻⁹⁸ in all cases
+/// (measured at most 2⁻¹⁰³·²).
 final class EllipsoidAxesTests: XCTestCase {
   typealias Exact = ExactDyadic
   typealias Scaled = ScaledDoubleDouble
@@ -124,11 +125,25 @@ final class EllipsoidAxesTests: XCTestCase {
     }
   }
 
-  /// L = S·R: the rows carry the scales (decomposed through Lᵀ).
+  /// L = S·R: the rows carry the scales.
   func testAxes_RotationThenScale() throws {
     for exponent in [1, 6, 16, 30, 100, 150, 300] {
       try check(
         scale(aspect: exponent) * turn, "scale·rotation, aspect 1e\(exponent)")
+    }
+  }
+
+  /// A general well-conditioned matrix B scaled on the left (rows) and on
+  /// the right (columns).
+  func testAxes_ScaledGeneralMatrix() throws {
+    var b = Matrix4<Double>.identity
+    (b.m00, b.m01, b.m02) = (1, 0.3, 0.2)
+    (b.m10, b.m11, b.m12) = (0.5, 1, 0.1)
+    (b.m20, b.m21, b.m22) = (0.2, 0.4, 1)
+    for exponent in [6, 16, 30, 100, 150, 300] {
+      let s = scale(aspect: exponent)
+      try check(s * b, "scale·B, aspect 1e\(exponent)")
+      try check(b * s, "B·scale, aspect 1e\(exponent)")
     }
   }
 
