@@ -338,12 +338,26 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   func testEllipsoids(
     _ ray: CameraRay<Scalar>, _ nearest: inout NearestHit<Scalar, Nearest>
   ) {
-    for index in ellipsoids.indices {
-      nearest.test(.ellipsoid(index)) {
-        Kernel.intersect(ellipsoids[index], ray, before: $0)
+    if !ellipsoids.isEmpty { testEachEllipsoid(ray, &nearest) }
+    if !shapes.isEmpty { testShapes(ray, &nearest) }
+  }
+
+  /// Out of line, so that the search loops of scenes without ellipsoids
+  /// hold none of the ellipsoid test's code (`EllipsoidFrame`). The
+  /// records are read in place: copied out of the array, the stable
+  /// method's (both of its forms, `StableEllipsoid`) made every test a
+  /// memory copy.
+  @inline(never)
+  func testEachEllipsoid(
+    _ ray: CameraRay<Scalar>, _ nearest: inout NearestHit<Scalar, Nearest>
+  ) {
+    ellipsoids.withUnsafeBufferPointer { records in
+      for index in records.indices {
+        nearest.test(.ellipsoid(index)) {
+          Kernel.intersect(records[index], ray, before: $0)
+        }
       }
     }
-    if !shapes.isEmpty { testShapes(ray, &nearest) }
   }
 
   /// The unit normal of the hit `what` at `t`; for a triangle, from the
@@ -365,7 +379,9 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
           of: ray, normals: vertexNormals(ofTriangle: index))
       }
     case .ellipsoid(let index):
-      Kernel.normal(ellipsoids[index], ray, t: t)
+      ellipsoids.withUnsafeBufferPointer {
+        Kernel.normal($0[index], ray, t: t)
+      }
     case .shape(let index):
       Vector3(shapeHit(index, ray)?.normal ?? .zero)
     }

@@ -88,10 +88,27 @@ extension NaiveKernel {
 ///
 /// Mild ellipsoids in Float keep the object-space test
 /// (`ObjectSpaceEllipsoid`, `isMild`), which the project's Float images
-/// were drawn with, and which is as accurate there.
-public enum StableEllipsoid<Scalar: RayScalar>: Sendable {
-  case principalAxes(EllipsoidFrame<Scalar>)
-  case objectSpace(ObjectSpaceEllipsoid<StableKernel<Scalar>>)
+/// were drawn with, and which is as accurate there. Both are stored and a
+/// flag chooses, rather than an enum: a search copied the enum's payload
+/// out of the array on every test, which made an ellipsoid's test twice
+/// as slow.
+public struct StableEllipsoid<Scalar: RayScalar>: Sendable {
+  var usesObjectSpace: Bool
+  var frame: EllipsoidFrame<Scalar>
+  var objectSpace: ObjectSpaceEllipsoid<StableKernel<Scalar>>
+
+  init(_ ellipsoid: TransformedSphere<Double>, eye: Vector3<Double>) {
+    objectSpace = ObjectSpaceEllipsoid(ellipsoid, eye: eye)
+    guard
+      let axes = EllipsoidAxes(
+        matrix: ellipsoid.matrix, sphere: ellipsoid.sphere)
+    else {
+      (usesObjectSpace, frame) = (false, .never)
+      return
+    }
+    usesObjectSpace = Self.isMild(axes, eye: eye)
+    frame = EllipsoidFrame(axes, eye: eye) ?? .never
+  }
 
   /// Whether the object-space test is exact to a few ulps for `axes` seen
   /// from `eye` in S, and so is kept: S narrower than Double (the eye is
@@ -124,34 +141,26 @@ extension StableKernel {
   public static func makeEllipsoid(
     _ ellipsoid: TransformedSphere<Double>, eye: Vector3<Double>
   ) -> EllipsoidRecord {
-    guard
-      let axes = EllipsoidAxes(
-        matrix: ellipsoid.matrix, sphere: ellipsoid.sphere)
-    else { return .principalAxes(.never) }
-    if StableEllipsoid<Scalar>.isMild(axes, eye: eye) {
-      return .objectSpace(ObjectSpaceEllipsoid(ellipsoid, eye: eye))
-    }
-    return .principalAxes(EllipsoidFrame(axes, eye: eye) ?? .never)
+    StableEllipsoid(ellipsoid, eye: eye)
   }
 
   @inline(__always)
   public static func intersect(
     _ record: EllipsoidRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
   ) -> Scalar? {
-    switch record {
-    case .principalAxes(let frame):
-      frame.root(direction: ray.direction, before: tMax)
-    case .objectSpace(let ellipsoid): ellipsoid.intersect(ray, before: tMax)
-    }
+    record.usesObjectSpace
+      ? record.objectSpace.intersect(ray, before: tMax)
+      : record.frame.root(direction: ray.direction, before: tMax)
   }
 
+  /// Out of line, as the search's test (`testEachEllipsoid`): the
+  /// normal of every other kind is computed in the same function.
+  @inline(never)
   public static func normal(
     _ record: EllipsoidRecord, _ ray: CameraRay<Scalar>, t: Scalar
   ) -> Vector3<Scalar> {
-    switch record {
-    case .principalAxes(let frame):
-      frame.normal(direction: ray.direction, t: t)
-    case .objectSpace(let ellipsoid): ellipsoid.normal(ray, t: t)
-    }
+    record.usesObjectSpace
+      ? record.objectSpace.normal(ray, t: t)
+      : record.frame.normal(direction: ray.direction, t: t)
   }
 }
