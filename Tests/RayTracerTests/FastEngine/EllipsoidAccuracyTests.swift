@@ -135,8 +135,12 @@ final class EllipsoidAccuracyTests: XCTestCase {
     for test in cases {
       let measured = try EllipsoidAccuracy.measure(
         test, R.self, width: size, height: size)
-      if printing { print("\(R.self) \(test): \(measured)") }
       let label = "\(R.self) \(test): \(measured)"
+      if printing {
+        // To standard error, unbuffered: standard output lost the first
+        // lines of this long a run.
+        FileHandle.standardError.write(Data((label + "\n").utf8))
+      }
       XCTAssertGreaterThan(measured.interiorHits, 0, label)
       XCTAssertEqual(measured.disagreements, 0, label)
       XCTAssertLessThanOrEqual(measured.tError, 4, label)
