@@ -334,21 +334,12 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     testEllipsoids(ray, &nearest)
   }
 
+  /// Offers the ellipsoids' hits to `nearest`, in order, then the other
+  /// shapes'. The records are read in place: copied out of the array, the
+  /// stable method's (both of its forms, `StableEllipsoid`) made every
+  /// test a memory copy.
   @inline(__always)
   func testEllipsoids(
-    _ ray: CameraRay<Scalar>, _ nearest: inout NearestHit<Scalar, Nearest>
-  ) {
-    if !ellipsoids.isEmpty { testEachEllipsoid(ray, &nearest) }
-    if !shapes.isEmpty { testShapes(ray, &nearest) }
-  }
-
-  /// Out of line, so that the search loops of scenes without ellipsoids
-  /// hold none of the ellipsoid test's code (`EllipsoidFrame`). The
-  /// records are read in place: copied out of the array, the stable
-  /// method's (both of its forms, `StableEllipsoid`) made every test a
-  /// memory copy.
-  @inline(never)
-  func testEachEllipsoid(
     _ ray: CameraRay<Scalar>, _ nearest: inout NearestHit<Scalar, Nearest>
   ) {
     ellipsoids.withUnsafeBufferPointer { records in
@@ -358,6 +349,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
         }
       }
     }
+    if !shapes.isEmpty { testShapes(ray, &nearest) }
   }
 
   /// The unit normal of the hit `what` at `t`; for a triangle, from the
