@@ -73,6 +73,9 @@ struct EllipsoidAccuracy: CustomStringConvertible {
   /// Hit in one and not the other: off the rim, and on it.
   var disagreements = 0
   var rimDisagreements = 0
+  /// The largest distance from the silhouette, in roundings
+  /// (`rimDistance`/ε), of a pixel where they disagree.
+  var farthestDisagreement = 0.0
   /// Off the rim: |t − t*| / (ε·t*·max(1, κ_t)), κ_t the relative change
   /// of t* per relative change of the ray's direction or of the
   /// ellipsoid's position (measured only where the error exceeds
@@ -84,23 +87,27 @@ struct EllipsoidAccuracy: CustomStringConvertible {
   /// change per relative change of the direction or position.
   var normalError = 0.0
   var rawNormalError = 0.0
-  /// Normals at more than 90° from the exact one, anywhere hit by both.
+  /// Normals at more than 90° from the exact one, where both hit: off
+  /// the rim, and on it (where the exact normal turns through 180° within
+  /// the ray's rounding: the hit's t moves as the square root of it).
   var reversed = 0
+  var rimReversed = 0
 
   /// Pixels within this many roundings of the silhouette (of the ray's
   /// direction or of the ellipsoid's position relative to the eye) are
   /// the rim, where hit or miss may go either way.
-  static let rimRoundings = 64.0
+  static let rimRoundings = 4.0
   /// Errors above this many ε are checked against the pixel's
   /// conditioning.
   static let conditionedFrom = 4.0
 
   var description: String {
     "hits \(exactHits) (interior \(interiorHits), rim \(rim)), "
-      + "disagreements \(disagreements) (rim \(rimDisagreements)), "
+      + "disagreements \(disagreements) (rim \(rimDisagreements), "
+      + "within \(format(farthestDisagreement)) roundings), "
       + "t \(format(tError)) ε (raw \(format(rawTError))), "
       + "normal \(format(normalError)) ε (raw \(format(rawNormalError))), "
-      + "reversed \(reversed)"
+      + "reversed \(reversed) (rim \(rimReversed))"
   }
 
   func format(_ x: Double) -> String {
@@ -151,6 +158,49 @@ struct EllipsoidAccuracy: CustomStringConvertible {
     return result
   }
 
+  /// Rays from the eye aimed at the ellipsoid's equator (the image of
+  /// the unit sphere's, M·(cos φ, sin φ, 0): its rim for a disc scaled
+  /// last) from inside and outside, (1 ± 2⁻ᵏ) of the way out for k = 4 to
+  /// 44, every 30° around, each measured as a pixel is: the pixels no
+  /// camera grid puts on the rim.
+  static func measureRim<R: RayScalar>(
+    _ test: EllipsoidCase, _: R.Type
+  ) throws -> EllipsoidAccuracy {
+    let scene = try test.scene(R.self == Float.self ? .float : .double)
+    let compiled = CompiledScene<StableKernel<R>>(scene)
+    let placed = scene.root.flattened().transformedSpheres
+    guard let ellipsoid = placed.first else { return EllipsoidAccuracy() }
+    let exact = ExactEllipsoid(
+      matrix: ellipsoid.matrix, sphere: ellipsoid.sphere)
+    let (eye, axes) = (scene.camera.center, test.axes)
+    var result = EllipsoidAccuracy()
+    for degrees in stride(from: 0.0, to: 360, by: 30) {
+      let angle = degrees * .pi / 180
+      for k in stride(from: 4, through: 56, by: 2) {
+        for side in [-1.0, 1.0] {
+          let out = 1 + side * LengthScale.factor(-k)
+          let target = ellipsoid.matrix.transformPoint(
+            Vector3(cos(angle) * out, sin(angle) * out, 0))
+          let direction = Vector3<R>((target - eye).normalized())
+          let ray = CameraRay(origin: compiled.rayOrigin, direction: direction)
+          let hit = compiled.nearest(ray)
+          let wide = Vector3<Double>(direction)
+          result.add(
+            exact.intersect(eye: eye, direction: wide, axes: axes),
+            t: hit.map { Double($0.t * compiled.lengthScale) } ?? .infinity,
+            normal: hit.map {
+              Vector3<Double>(compiled.normal(of: $0.what, ray, t: $0.t))
+            } ?? .zero,
+            epsilon: Double(R.ulpOfOne),
+            conditioning: {
+              exact.conditioning(eye: eye, direction: wide, axes: axes)
+            })
+        }
+      }
+    }
+    return result
+  }
+
   mutating func add(
     _ want: ExactEllipsoid.Result, t: Double, normal: Vector3<Double>,
     epsilon: Double,
@@ -164,13 +214,17 @@ struct EllipsoidAccuracy: CustomStringConvertible {
     let got = t.isFinite
     if got != want.hit {
       if onRim { rimDisagreements += 1 } else { disagreements += 1 }
+      farthestDisagreement = Swift.max(
+        farthestDisagreement, want.rimDistance / epsilon)
     }
     guard got, want.hit, let wantT = want.t, let wantNormal = want.normal
     else { return }
     let unit = Vector3<DoubleDouble>(normal) / Vector3<DoubleDouble>(normal)
       .length
     let cosine = unit.dot(wantNormal)
-    if cosine < 0 { reversed += 1 }
+    if cosine < 0 {
+      if onRim { rimReversed += 1 } else { reversed += 1 }
+    }
     guard !onRim else { return }
     let tError = Double(
       ((DoubleDouble(t) - wantT) / wantT).magnitude.hi) / epsilon
