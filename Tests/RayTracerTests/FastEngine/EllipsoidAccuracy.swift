@@ -240,7 +240,8 @@ struct EllipsoidAccuracy: CustomStringConvertible {
       condition = (Swift.max(1, measured.t), Swift.max(1, measured.normal))
     }
     self.tError = Swift.max(self.tError, tError / condition.t)
-    self.normalError = Swift.max(self.normalError, normalError / condition.normal)
+    self.normalError = Swift.max(
+      self.normalError, normalError / condition.normal)
   }
 }
 
@@ -280,7 +281,9 @@ extension ExactEllipsoid {
   /// C − E in Double.
   func offsetFromEye(_ eye: Vector3<Double>) -> Vector3<Double> {
     let e = [eye.x, eye.y, eye.z].map(ExactDyadic.init)
-    let w = (0..<3).map { Double(ScaledDoubleDouble(center[$0] - e[$0]).value.hi) }
+    let w = (0..<3).map {
+      Double(ScaledDoubleDouble(center[$0] - e[$0]).value.hi)
+    }
     return Vector3(w[0], w[1], w[2])
   }
 }

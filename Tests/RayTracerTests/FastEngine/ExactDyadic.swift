@@ -33,8 +33,9 @@ struct ExactDyadic: CustomStringConvertible {
       value.isNormal
       ? value.significandBitPattern | (1 << 52) : value.significandBitPattern
     let exponent =
-      value.isNormal
-      ? Int(value.exponent) - 52 : Int(Double.leastNormalMagnitude.exponent) - 52
+      (value.isNormal
+        ? Int(value.exponent) : Int(Double.leastNormalMagnitude.exponent))
+      - 52
     self.init(
       limbs: [UInt32(truncatingIfNeeded: integer), UInt32(integer >> 32)],
       negative: value < 0, exponent: exponent)

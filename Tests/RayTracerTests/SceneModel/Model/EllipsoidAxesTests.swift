@@ -82,7 +82,9 @@ final class EllipsoidAxesTests: XCTestCase {
     // LLᵀuⱼ − σⱼ²uⱼ over σ_max².
     let largest = squares.max { $0 < $1 } ?? Scaled(1)
     for j in 0..<3 {
-      let lt = (0..<3).map { k in l[0][k] * u[j][0] + l[1][k] * u[j][1] + l[2][k] * u[j][2] }
+      let lt = (0..<3).map { k in
+        l[0][k] * u[j][0] + l[1][k] * u[j][1] + l[2][k] * u[j][2]
+      }
       var squaredResidual = Scaled.zero
       for i in 0..<3 {
         let component = Scaled(dot(l[i], lt)) - squares[j] * Scaled(u[j][i])
