@@ -161,28 +161,6 @@ struct PlanedTriangleLeaves<Scalar: RayScalar>: LeafPrimitives {
   }
 }
 
-/// A sphere under a non-similarity transform, stored in its own space:
-/// rays are carried there by M⁻¹ (direction not renormalised, so t is the
-/// world t) and the kernel's sphere test runs unchanged.
-struct EllipsoidRecord<Kernel: IntersectionKernel>: Sendable {
-  typealias Scalar = Kernel.Scalar
-  var sphere: Kernel.SphereRecord
-  /// The eye in object space, in the kernel's frame.
-  var origin: Vector3<Scalar>
-  /// The rows of M⁻¹'s linear part.
-  var inverseRows: (Vector3<Scalar>, Vector3<Scalar>, Vector3<Scalar>)
-  var matrix: Matrix4<Scalar>
-
-  @inline(__always)
-  func localRay(_ ray: CameraRay<Scalar>) -> CameraRay<Scalar> {
-    let d = ray.direction
-    return CameraRay(
-      origin: origin,
-      direction: Vector3(
-        inverseRows.0.dot(d), inverseRows.1.dot(d), inverseRows.2.dot(d)))
-  }
-}
-
 /// Per compiled triangle, the indices of its vertex normals in
 /// `CompiledScene.vertexNormals`, or −1s for flat shading.
 struct TriangleNormalIndices: Sendable {

@@ -64,7 +64,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   var triangleHierarchy: BoundingVolumeHierarchy<Scalar>?
   var wideTriangleHierarchy: WideHierarchy<Scalar>?
   /// Spheres under transforms that are not similarities.
-  var ellipsoids: [EllipsoidRecord<Kernel>] = []
+  var ellipsoids: [Kernel.EllipsoidRecord] = []
   var ellipsoidMaterials: [Int32] = []
   /// Shapes of kinds the engine does not specialise, in the world's units,
   /// each tested through its own `Hittable.intersect` after a check of its
@@ -235,18 +235,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       buildTriangleHierarchy()
     }
     for ellipsoid in all.transformedSpheres {
-      let objectEye = ellipsoid.inverse.transformPoint(eye)
-      let inverse = Matrix4<Scalar>(ellipsoid.inverse)
-      ellipsoids.append(
-        EllipsoidRecord(
-          sphere: Kernel.makeSphere(ellipsoid.sphere, eye: objectEye),
-          origin: Kernel.frameOrigin(eye: objectEye),
-          inverseRows: (
-            Vector3(inverse.m00, inverse.m01, inverse.m02),
-            Vector3(inverse.m10, inverse.m11, inverse.m12),
-            Vector3(inverse.m20, inverse.m21, inverse.m22)
-          ),
-          matrix: Matrix4<Scalar>(ellipsoid.matrix)))
+      ellipsoids.append(Kernel.makeEllipsoid(ellipsoid, eye: eye))
       ellipsoidMaterials.append(
         Int32(truncatingIfNeeded: ellipsoid.sphere.materialIndex))
     }
@@ -347,15 +336,19 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     testEllipsoids(ray, &nearest)
   }
 
+  /// Offers the ellipsoids' hits to `nearest`, in order, then the other
+  /// shapes'. The records are read in place: copied out of the array, the
+  /// stable method's (both of its forms, `StableEllipsoid`) made every
+  /// test a memory copy.
   @inline(__always)
   func testEllipsoids(
     _ ray: CameraRay<Scalar>, _ nearest: inout NearestHit<Scalar, Nearest>
   ) {
-    for index in ellipsoids.indices {
-      nearest.test(.ellipsoid(index)) {
-        Kernel.intersect(
-          ellipsoids[index].sphere, ellipsoids[index].localRay(ray),
-          before: $0)
+    ellipsoids.withUnsafeBufferPointer { records in
+      for index in records.indices {
+        nearest.test(.ellipsoid(index)) {
+          Kernel.intersect(records[index], ray, before: $0)
+        }
       }
     }
     if !shapes.isEmpty { testShapes(ray, &nearest) }
@@ -380,9 +373,9 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
           of: ray, normals: vertexNormals(ofTriangle: index))
       }
     case .ellipsoid(let index):
-      ellipsoids[index].matrix.transformNormal(
-        Kernel.normal(
-          ellipsoids[index].sphere, ellipsoids[index].localRay(ray), t: t))
+      ellipsoids.withUnsafeBufferPointer {
+        Kernel.normal($0[index], ray, t: t)
+      }
     case .shape(let index):
       Vector3(shapeHit(index, ray)?.normal ?? .zero)
     }

@@ -51,6 +51,22 @@ public protocol IntersectionKernel: Sendable {
     _ record: PlaneRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
   ) -> Scalar?
   static func normal(_ record: PlaneRecord) -> Vector3<Scalar>
+
+  /// A sphere under a transform that is not a similarity (an ellipsoid),
+  /// as the method stores it (IntersectionKernel+Ellipsoids.swift).
+  associatedtype EllipsoidRecord: Sendable
+  static func makeEllipsoid(
+    _ ellipsoid: TransformedSphere<Double>, eye: Vector3<Double>
+  ) -> EllipsoidRecord
+  /// The nearest root in (0, tMax) of a camera ray, in the world's t, or
+  /// nil.
+  static func intersect(
+    _ record: EllipsoidRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
+  ) -> Scalar?
+  /// The outward unit normal in the world at the root t of `intersect`.
+  static func normal(
+    _ record: EllipsoidRecord, _ ray: CameraRay<Scalar>, t: Scalar
+  ) -> Vector3<Scalar>
 }
 
 /// The course's method in world coordinates, recomputing o − centre and

@@ -7,9 +7,11 @@
 /// world instead wherever it stays the same kind of object there, which
 /// rounds less: triangles by their moved vertices, planes by their moved
 /// normal and point, spheres under similarities by their moved centre and
-/// scaled radius. Only a sphere stretched into an ellipsoid is hit the
-/// course's way, in its own space (`TransformedSphere`). The fast engine
-/// places objects the same way, once per render (`Group.flattened`).
+/// scaled radius. Only a sphere stretched into an ellipsoid stays a
+/// transformed sphere (`TransformedSphere`), hit in the frame of its axes
+/// by the stable method, in its own space by the naive one. The fast
+/// engine places objects the same way, once per render
+/// (`Group.flattened`).
 public struct Transform<Scalar: RayScalar>: Hashable, Sendable {
   public var matrix: Matrix4<Scalar>
   public var inverse: Matrix4<Scalar>
@@ -54,12 +56,32 @@ public struct TransformedSphere<Scalar: RayScalar>: Hashable, Sendable {
 }
 
 extension TransformedSphere: Intersectable {
-  /// The course's way: the ray taken into the sphere's space by M⁻¹, the
-  /// sphere's normal brought back by the inverse transpose.
+  /// The stable method: the ellipsoid in the frame of its axes as seen
+  /// from the ray's origin (`EllipsoidFrame`, its constants in
+  /// DoubleDouble from the Double matrix), tMin ≥ 0: the fast engine's
+  /// numbers in Double (in Float it keeps the object-space test for mild
+  /// ellipsoids, `StableEllipsoid`). The naive method, the course's way:
+  /// the ray taken into the sphere's space by M⁻¹, the sphere's normal
+  /// brought back by the inverse transpose.
   public func intersect(
     _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar,
     method: IntersectionMethod
   ) -> Hit<Scalar>? {
+    if method == .stable {
+      let placed = TransformedSphere<Double>(
+        sphere: Sphere(
+          center: Vector3(sphere.center), radius: Double(sphere.radius),
+          materialIndex: sphere.materialIndex),
+        matrix: Matrix4(matrix), inverse: Matrix4(inverse))
+      let frame = EllipsoidFrame<Scalar>(placed, eye: Vector3(ray.origin))
+      guard
+        let t = frame.root(
+          direction: ray.direction, after: tMin, before: tMax)
+      else { return nil }
+      return Hit(
+        t: t, normal: frame.normal(direction: ray.direction, t: t),
+        materialIndex: sphere.materialIndex)
+    }
     let local = Ray(
       origin: inverse.transformPoint(ray.origin),
       direction: inverse.transformDirection(ray.direction))
