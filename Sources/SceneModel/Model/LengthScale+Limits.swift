@@ -29,14 +29,52 @@ extension LengthScale {
       case .double: factor(-exponent($0, as: Double.self))
       }
     }
-    return firstFailure(
-      in: scene, smallest: precision.smallestNormal, commonScale: scale,
-      ownScale: scale
-    ).map {
-      "\($0.what) for \(precision.rawValue): with that length scaled to "
-        + "about 1, \($0.measure) is below \(precision.rawValue)'s normal "
-        + "range" + (precision == .float ? "; use --precision double" : "")
+    var extent = Extent(eye: scene.camera.center)
+    extent.measure(.group(scene.root))
+    let advice = precision == .float ? "; use --precision double" : ""
+    if let failure = firstFailure(
+      in: scene, extent, smallest: precision.smallestNormal,
+      commonScale: scale, ownScale: scale)
+    {
+      return "\(failure.what) for \(precision.rawValue): with that length "
+        + "scaled to about 1, \(failure.measure) is below "
+        + "\(precision.rawValue)'s normal range" + advice
     }
+    return tooFarForItsAxes(
+      scene, extent, smallest: precision.smallestNormal
+    ).map {
+      "\($0.what) for \(precision.rawValue): \($0.measure) is below "
+        + "\(precision.rawValue)'s normal range at any scale" + advice
+    }
+  }
+
+  /// The first ellipsoid whose centre is more than 2⁶¹ (float) or 2⁵⁰⁹
+  /// (double) of its shortest semi-axes from the eye: the fast engine's
+  /// test in the frame of its axes (`EllipsoidFrame`) squares that ratio,
+  /// which no scale changes, and could not hold it (the ellipsoid was left
+  /// out of the image without a word). Only scenes whose ellipsoids reach
+  /// that far (`Extent.reachInAxes`, never less than the ratio) are
+  /// searched.
+  static func tooFarForItsAxes(
+    _ scene: Scene, _ extent: Extent, smallest: Double
+  ) -> Failure? {
+    guard 16 * smallest * extent.reachInAxes * extent.reachInAxes > 1
+    else { return nil }
+    let eye = scene.camera.center
+    var found: Failure?
+    forEachPrimitive(in: .group(scene.root)) { primitive in
+      guard found == nil, case .ellipsoid(let ellipsoid) = primitive else {
+        return
+      }
+      let m = ellipsoid.matrix
+      let distance = length(Vector3(m.m03, m.m13, m.m23) - eye)
+      let ratio = distance > 0 ? ellipsoid.shortestAxis / distance : 1
+      guard ratio * ratio < 16 * smallest else { return }
+      found = Failure(
+        primitive, beside: "its distance from the eye (\(distance))",
+        measure: "its shortest axis over that distance, squared,")
+    }
+    return found
   }
 
   /// Why the course engine, which computes with the scene's own lengths

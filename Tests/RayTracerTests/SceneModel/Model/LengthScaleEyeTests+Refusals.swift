@@ -132,7 +132,14 @@ extension LengthScaleEyeTests {
             matrix: .translation(Vector3(0, 0, -1e60))
               * .scale(Vector3(1e-100, 2e-100, 1e-100)),
             object: .sphere(Sphere(center: .zero, radius: 1))))))
-    XCTAssertNil(LengthScale.problem(thin, precision: .double))
+    // The fast engine's test in the frame of the ellipsoid's axes squares
+    // the same ratio (10³²⁰): refused for it too, whatever the scale.
+    XCTAssertEqual(
+      LengthScale.problem(thin, precision: .double),
+      "a transformed sphere whose shortest axis is 1e-100 is too small "
+        + "beside its distance from the eye (1e+60) for double: its "
+        + "shortest axis over that distance, squared, is below double's "
+        + "normal range at any scale")
     XCTAssertEqual(
       LengthScale.unscaledProblem(thin),
       "the course engine, which computes with the scene's own lengths, "
@@ -144,5 +151,33 @@ extension LengthScaleEyeTests {
       LengthScale.unscaledProblem(try Self.view(eye: 1e14, scale: 1)))
     XCTAssertNil(
       LengthScale.unscaledProblem(try Self.view(eye: 1e300, scale: 1)))
+  }
+
+  /// An ellipsoid whose centre is more than 2⁶¹ (float) or 2⁵⁰⁹ (double)
+  /// of its shortest semi-axes from the eye: its test in the frame of its
+  /// axes squares that ratio, which no scale changes, so it is refused
+  /// (it was left out of the image without a word); just inside, drawn.
+  func testProblem_EllipsoidTooFarForItsThinnestAxis() throws {
+    for (precision, limit) in [(Precision.float, 0x1p61), (.double, 0x1p509)] {
+      for (ratio, refused) in [(limit * 2, true), (limit / 4, false)] {
+        let distance = 1e3
+        let matrix =
+          Matrix4<Double>.translation(Vector3(0, 0, -distance))
+          * Matrix4.scale(Vector3(100, 100, distance / ratio))
+        let object = SceneObject<Double>.transform(
+          try XCTUnwrap(
+            Transform(
+              matrix: matrix,
+              object: .sphere(Sphere(center: .zero, radius: 1)))))
+        let problem = LengthScale.problem(
+          try scene(eye: 0, object), precision: precision)
+        XCTAssertEqual(problem != nil, refused, "\(precision) \(ratio)")
+        if refused {
+          XCTAssertTrue(
+            problem?.contains("its shortest axis over that distance") == true,
+            problem ?? "")
+        }
+      }
+    }
   }
 }
