@@ -92,16 +92,19 @@ extension TrianglePlane {
     let cross = e1.cross(e2)
     let crossSquared = cross.lengthSquared
     guard crossSquared > 0 else { return crossSquared == 0 }
+    // Two-argument minima and maxima throughout: the variadic ones cost
+    // more than the rest of the estimate.
     let longestSquared = Swift.max(
-      e1.lengthSquared, e2.lengthSquared, e3.lengthSquared)
+      Swift.max(e1.lengthSquared, e2.lengthSquared), e3.lengthSquared)
     let k = cross.dot(a)
     let planeDistanceSquared = (k / crossSquared) * k
     @inline(__always) func gap(_ p: S, _ q: S, _ r: S) -> S {
-      let (low, high) = (Swift.min(p, q, r), Swift.max(p, q, r))
+      let low = Swift.min(Swift.min(p, q), r)
+      let high = Swift.max(Swift.max(p, q), r)
       return low > 0 ? low : (high < 0 ? -high : 0)
     }
     let boxGap = Swift.max(
-      gap(a.x, b.x, c.x), gap(a.y, b.y, c.y), gap(a.z, b.z, c.z))
+      Swift.max(gap(a.x, b.x, c.x), gap(a.y, b.y, c.y)), gap(a.z, b.z, c.z))
     let nearSquared = Swift.max(planeDistanceSquared, boxGap * boxGap)
     // (longest² / twice the area)² · max(1, longest² / near²) > limit².
     let thinnessSquared = (longestSquared / crossSquared) * longestSquared
@@ -201,10 +204,11 @@ extension TrianglePlane {
       }
       func append(_ axis: (head: S, tail: S, parts: [Double]), _ d: Pair) {
         if axis.parts.isEmpty {
-          for part in [Double(axis.head), Double(axis.tail)] {
-            append(part, d.sum)
-            append(part, d.error)
-          }
+          let (head, tail) = (Double(axis.head), Double(axis.tail))
+          append(head, d.sum)
+          append(head, d.error)
+          append(tail, d.sum)
+          append(tail, d.error)
         } else {
           for part in axis.parts {
             append(part, d.sum)
