@@ -150,29 +150,26 @@ extension Triangle: Intersectable {
     _ ray: Ray<Scalar>, after tMin: Scalar, before tMax: Scalar,
     method: IntersectionMethod
   ) -> Hit<Scalar>? {
-    // The interval filters t after the test, so the test runs on the
-    // whole line: a large triangle takes t from its plane instead.
-    guard
-      let hit = TriangleIntersection.intersect(
-        WatertightRay(ray), v0, v1, v2, after: -.infinity, before: .infinity)
-    else { return nil }
     let seen =
       method == .naive
       ? self
       : Triangle(v0 - ray.origin, v1 - ray.origin, v2 - ray.origin)
-    guard let geometric = seen.geometricNormal else { return nil }
-    var t = hit.t
-    if method == .stable,
-      let plane = exactPlane(seen: seen, geometric: geometric, from: ray.origin)
-    {
-      guard
-        let planeT = plane.t(
-          direction: ray.direction, after: tMin, before: tMax)
-      else { return nil }
-      t = planeT
-    } else {
-      guard t > tMin && t < tMax else { return nil }
-    }
+    // The watertight test decides; the stable method's exact plane, where
+    // the triangle has one, gives t, and is found only for rays the edges
+    // accept (`TriangleIntersection.intersect(_:_:after:before:exactPlane:)`).
+    let prepared = WatertightRay(ray)
+    guard
+      let hit = TriangleIntersection.intersect(
+        prepared, PermutedTriangle(prepared, v0, v1, v2), after: tMin,
+        before: tMax,
+        exactPlane: {
+          guard method == .stable, let geometric = seen.geometricNormal
+          else { return nil }
+          return exactPlane(seen: seen, geometric: geometric, from: ray.origin)
+        }),
+      let geometric = seen.geometricNormal
+    else { return nil }
+    let t = hit.t
     let normal = shadingNormal(
       u: hit.u, v: hit.v, w: hit.w, geometric: geometric)
     return Hit(
