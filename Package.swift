@@ -108,7 +108,7 @@ let optimizedInDebugBuilds: [SwiftSetting] =
 
 // Release builds optimise across the library's targets: the fast engine's
 // generic kernels are specialised for Float and Double with the numerics
-// of SceneModel inlined into them, as when they were one module (without
+// of Numerics and Geometry inlined into them, as when they were one module (without
 // it the 10⁴-sphere render was 2.5 times slower). Debug builds do not: it
 // would cost the student's loop its build time.
 let acrossTargets: [SwiftSetting] = [
@@ -120,21 +120,26 @@ let package = Package(
   products: [
     .executable(name: "raytrace", targets: ["raytrace"]),
     .library(name: "Course", targets: ["Course"]),
-    .library(
-      name: "RayTracer",
-      targets: ["SceneModel", "SceneIO", "FastEngine", "Measurement"]),
   ],
   dependencies: dependencies,
-  // Targets by audience, each importing only those above it in this list:
-  //   SceneModel   vectors, rays, the hit protocol, the scene as read
-  //                (camera, lights, materials, objects), render settings
-  //   Course       the course's shapes and loop: what a student edits
-  //   SceneIO      the scene, mesh and image readers and writers
-  //   FastEngine   the fast engine: records, numerics, search structures
-  //   Measurement  `raytrace report` and `raytrace bench`
-  //   raytrace     the executable: arguments and messages
-  // Course and FastEngine do not import each other: editing the course
-  // rebuilds only it, its tests and the executable.
+  // Targets by audience, arrows only downwards (docs/ENGINES.md draws
+  // them):
+  //   Geometry          vectors, rays, matrices, boxes, hits, the hit
+  //                     protocol, camera, lights, materials, textures, the
+  //                     image's conventions: the leaf
+  //   SceneDescription  the scene as read: plain data, no intersection
+  //   Course            the course's shapes and loop: what a student edits
+  //   Platform          the C library: files, memory, threads, processes
+  //   Numerics          the fast engine's numerics: double-double,
+  //                     compensated sums, length scales, ellipsoid frames,
+  //                     exact planes, its intersection kernels
+  //   SceneIO           the scene, mesh and image readers and writers
+  //   FastEngine        the fast engine: records, search structures
+  //   Pipeline          read, check, render with an engine, encode, commit
+  //   Measurement       `raytrace report`, `bench` and `compare`
+  //   raytrace          the executable: arguments and messages
+  // Course needs only the leaf and the description: editing it rebuilds
+  // only it, its tests, the pipeline and the executable.
   targets: standIns + [
     // The system zlib (zlib1g-dev on Debian, part of the SDK on macOS).
     .systemLibrary(
@@ -142,40 +147,70 @@ let package = Package(
       providers: [.apt(["zlib1g-dev"]), .brew(["zlib"])]
     ),
     .target(
-      name: "SceneModel", dependencies: [realModule],
+      name: "Geometry", dependencies: [realModule],
+      swiftSettings: acrossTargets),
+    .target(
+      name: "SceneDescription", dependencies: ["Geometry"],
       swiftSettings: acrossTargets),
     .target(
       name: "Course",
-      dependencies: ["SceneModel"],
+      dependencies: ["Geometry", "SceneDescription"],
       swiftSettings: optimizedInDebugBuilds
     ),
+    .target(name: "PlatformSupport", swiftSettings: acrossTargets),
     .target(
-      name: "SceneIO", dependencies: ["SceneModel", "CZlib"],
+      name: "Numerics",
+      dependencies: ["Geometry", "SceneDescription", "PlatformSupport", realModule],
       swiftSettings: acrossTargets),
     .target(
-      name: "FastEngine", dependencies: ["SceneModel", "SceneIO"],
+      name: "SceneIO",
+      dependencies: [
+        "Geometry", "SceneDescription", "Numerics", "PlatformSupport", "CZlib",
+      ],
+      swiftSettings: acrossTargets),
+    .target(
+      name: "FastEngine",
+      dependencies: ["Geometry", "SceneDescription", "Numerics", "PlatformSupport"],
+      swiftSettings: acrossTargets),
+    .target(
+      name: "Pipeline",
+      dependencies: [
+        "Geometry", "SceneDescription", "Course", "Numerics", "PlatformSupport",
+        "SceneIO", "FastEngine",
+      ],
       swiftSettings: acrossTargets),
     .target(
       name: "Measurement",
-      dependencies: ["SceneModel", "SceneIO", "FastEngine", realModule]
+      dependencies: [
+        "Geometry", "SceneDescription", "Numerics", "PlatformSupport", "SceneIO",
+        "FastEngine", "Pipeline", realModule,
+      ]
     ),
     .executableTarget(
       name: "raytrace",
       dependencies: [
-        "SceneModel", "Course", "SceneIO", "FastEngine", "Measurement",
-        argumentParser,
+        "Geometry", "SceneDescription", "Numerics", "PlatformSupport", "SceneIO",
+        "FastEngine", "Pipeline", "Measurement", argumentParser,
       ]
     ),
+    // The course's own tests: the course's closure only.
     .testTarget(
       name: "CourseTests",
+      dependencies: ["Course", "Geometry", "SceneDescription"]
+    ),
+    // The two engines side by side: their agreement and `--check`.
+    .testTarget(
+      name: "EngineTests",
       dependencies: [
-        "Course", "SceneModel", "SceneIO", "FastEngine", "Measurement",
+        "Course", "Geometry", "SceneDescription", "Numerics", "SceneIO",
+        "FastEngine", "Pipeline", "Measurement",
       ]
     ),
     .testTarget(
       name: "RayTracerTests",
       dependencies: [
-        "SceneModel", "SceneIO", "FastEngine", "Measurement", "raytrace",
+        "Geometry", "SceneDescription", "Numerics", "PlatformSupport", "SceneIO",
+        "FastEngine", "Pipeline", "Measurement", "raytrace",
       ]
     ),
   ]

@@ -6,7 +6,10 @@
 
 @testable import FastEngine
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 @_cdecl("LLVMFuzzerTestOneInput")
 public func fuzzBMPReader(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt {

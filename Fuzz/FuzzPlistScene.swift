@@ -20,7 +20,10 @@
 
 @testable import FastEngine
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 @_cdecl("LLVMFuzzerTestOneInput")
 public func fuzzPlistScene(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt {

@@ -28,7 +28,10 @@
 
 @testable import FastEngine
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// Extra render checks, off by default: see the file header.
 let strictChecks =

@@ -21,7 +21,8 @@
 # same sources SwiftPM compiles, instrumented with -sanitize=fuzzer,address:
 #   RealModule, ArgumentParser     the stand-ins, as they are, or the real
 #                                  packages' modules (below)
-#   SceneModel, Course, SceneIO, FastEngine, Measurement
+#   Geometry, SceneDescription, Course, PlatformSupport, Numerics, SceneIO,
+#   FastEngine, Pipeline, Measurement
 #                                  the library's targets in the order they
 #                                  import each other, -enable-testing: the
 #                                  fuzzer reaches the internal
@@ -80,7 +81,8 @@ esac
 variant=${opt// /}
 [ "$sanitizers" = fuzzer ] && variant+=-noasan
 objects=$build/obj$variant
-flags=(-parse-as-library -wmo -gline-tables-only $opt -sanitize=$sanitizers)
+flags=(-parse-as-library -wmo -gline-tables-only $opt -sanitize=$sanitizers
+  -package-name raytrace)
 
 # The two packages: the stand-ins' folders, or the real packages' checkouts
 # chosen as Package.swift chooses them.
@@ -160,7 +162,8 @@ compile_library() {
   compile_real_module
   local module
   library_objects=()
-  for module in SceneModel Course SceneIO FastEngine Measurement; do
+  for module in Geometry SceneDescription Course PlatformSupport Numerics \
+    SceneIO FastEngine Pipeline Measurement; do
     compile "$module" "Sources/$module" -enable-testing "${numerics_flags[@]}" \
       -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap
     library_objects+=("$objects/$module.o")

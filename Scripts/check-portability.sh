@@ -3,7 +3,7 @@
 # building on macOS 14+ (Xcode 16, Swift 6.0) while Linux builds it fine.
 # Prints one line per violation, FILE:LINE: problem, and exits 1 if any.
 #
-#  1. The C library's module is named only in Sources/SceneModel/System/
+#  1. The C library's module is named only in Sources/PlatformSupport/
 #     (and in the stand-ins for swift-numerics and swift-argument-parser,
 #     which keep their own imports as the real packages do).
 #  2. Every `import Glibc` has a Darwin branch in the same #if chain, and
@@ -29,12 +29,12 @@ swift_files() {
 # 1 and 2: imports of the C library.
 while IFS= read -r file; do
   case $file in
-    Sources/SceneModel/System/* | Sources/RealModule/* | Sources/ArgumentParser/*) allowed=1 ;;
+    Sources/PlatformSupport/* | Sources/RealModule/* | Sources/ArgumentParser/*) allowed=1 ;;
     *) allowed=0 ;;
   esac
   while IFS=: read -r line text; do
     if [ "$allowed" = 0 ]; then
-      fail "$file:$line: imports the C library outside Sources/SceneModel/System ($text)"
+      fail "$file:$line: imports the C library outside Sources/PlatformSupport ($text)"
     fi
   done < <(grep -nE '^\s*(@_exported\s+)?import\s+(Glibc|Darwin|Musl)\b' "$file")
   # Each Glibc import's #if chain must also name Darwin.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Renders every project scene, the stiff suite and (when ../shared is beside
-# the checkout) the course's scenes in each precision, method, style and
+# the checkout) the course's scenes, with both engines, in each precision, method, style and
 # sampling, and prints one line per image: its SHA-256 and how it was made.
 # The shaded image is written as PPM, so that the hash is of the pixels and
 # not of how a PNG encoder happened to compress them.
@@ -23,7 +23,7 @@ done
 
 render() {
   local label=$1; shift
-  "$binary" "$@" --engine fast -o "$out/s.ppm" --depth "$out/d.pfm" \
+  "$binary" "$@" -o "$out/s.ppm" --depth "$out/d.pfm" \
     --normals "$out/n.pfm" 2>/dev/null || { echo "failed  $label"; return; }
   # One hash per output, so that a diff says which changed (a change may
   # move depth values in their last bits and leave the images alone).
@@ -38,10 +38,16 @@ for scene in "${scenes[@]}"; do
   for precision in double float; do
     for method in stable naive; do
       render "$scene $precision $method" "$scene" --size 96 80 \
-        --precision "$precision" --intersection "$method"
+        --engine fast --precision "$precision" --intersection "$method"
     done
   done
-  render "$scene mit" "$scene" --size 96 80 --style mit
-  render "$scene 16 samples" "$scene" --size 64 48 --samples 16
-  render "$scene 300x300" "$scene" --size 300 300
+  # Both engines in each style and sampling (the course engine computes in
+  # Double by its own method only).
+  for engine in fast course; do
+    render "$scene $engine mit" "$scene" --size 96 80 --style mit \
+      --engine $engine
+    render "$scene $engine 16 samples" "$scene" --size 64 48 --samples 16 \
+      --engine $engine
+    render "$scene $engine 300x300" "$scene" --size 300 300 --engine $engine
+  done
 done

@@ -1,4 +1,5 @@
-import SceneModel
+import Geometry
+import SceneDescription
 
 
 /// A binary tree of boxes over a list of objects' boxes, for a mesh's

@@ -1,4 +1,5 @@
-import SceneModel
+import Geometry
+import SceneDescription
 
 extension CourseEngine {
   /// The ray of pixel (`column`, `row`) and what each object of the scene's

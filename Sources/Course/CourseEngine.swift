@@ -1,5 +1,6 @@
 import Foundation
-import SceneModel
+import Geometry
+import SceneDescription
 
 /// The course's ray caster, as the slides give it: for every pixel a ray
 /// from the camera; for every object of the scene the hit protocol

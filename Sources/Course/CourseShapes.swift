@@ -1,4 +1,5 @@
-import SceneModel
+import Geometry
+import SceneDescription
 
 /// The kinds of object the course adds to the ones the readers know
 /// (Sphere, Plane, Triangle, TriangleMesh, Group, Transform): a new shape is

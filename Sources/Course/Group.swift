@@ -1,4 +1,5 @@
-import SceneModel
+import Geometry
+import SceneDescription
 
 
 /// A list of objects hit as one (the course's `Group`).

@@ -1,4 +1,5 @@
-import SceneModel
+import Geometry
+import SceneDescription
 
 
 /// A plane: the points P with n·P = d (the text format's `normal` and

@@ -1,4 +1,5 @@
-import SceneModel
+import Geometry
+import SceneDescription
 
 /// The course's objects for a scene as the readers give it: the one place
 /// that names each kind of object for the course engine.
@@ -13,7 +14,7 @@ struct SceneObjects {
   }
 
   /// The scene's root group as the course's objects.
-  static func group(_ group: SceneModel.Group<Double>) -> Group {
+  static func group(_ group: SceneDescription.Group<Double>) -> Group {
     var objects = SceneObjects()
     return objects.group(group)
   }
@@ -24,7 +25,7 @@ struct SceneObjects {
     return objects.object(object)
   }
 
-  mutating func group(_ group: SceneModel.Group<Double>) -> Group {
+  mutating func group(_ group: SceneDescription.Group<Double>) -> Group {
     Group(group.objects.compactMap { object($0) })
   }
 
@@ -60,7 +61,7 @@ struct SceneObjects {
     }
   }
 
-  static func triangle(_ triangle: SceneModel.Triangle<Double>) -> Triangle {
+  static func triangle(_ triangle: SceneDescription.Triangle<Double>) -> Triangle {
     var result = Triangle(
       triangle.v0, triangle.v1, triangle.v2,
       materialIndex: triangle.materialIndex)

@@ -1,4 +1,5 @@
-import SceneModel
+import Geometry
+import SceneDescription
 
 
 /// An object placed by a matrix M (the course's `Transform`): the object's

@@ -1,4 +1,5 @@
-import SceneModel
+import Geometry
+import SceneDescription
 
 
 /// A triangle (a, b, c), with a normal and texture coordinates at each

@@ -1,4 +1,5 @@
-import SceneModel
+import Geometry
+import SceneDescription
 
 
 /// The triangles of a mesh file (the course's `TriangleMesh`), hit through

@@ -1,19 +1,21 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// A camera ray as the render loop uses it: in the kernel's frame, with the
 /// per-ray quantities every primitive test needs computed once.
-public struct CameraRay<Scalar: RayScalar>: Sendable {
+package struct CameraRay<Scalar: RayScalar>: Sendable {
   /// The eye in the kernel's frame: the origin for camera-relative kernels.
-  public var origin: Vector3<Scalar>
-  public var direction: Vector3<Scalar>
+  package var origin: Vector3<Scalar>
+  package var direction: Vector3<Scalar>
   /// d·d, and its inverse: exactly 1 only when the rounded direction is
   /// exactly unit.
-  public var lengthSquared: Scalar
-  public var inverseLengthSquared: Scalar
+  package var lengthSquared: Scalar
+  package var inverseLengthSquared: Scalar
 
   @inlinable
-  public init(origin: Vector3<Scalar>, direction: Vector3<Scalar>) {
+  package init(origin: Vector3<Scalar>, direction: Vector3<Scalar>) {
     self.origin = origin
     self.direction = direction
     lengthSquared = direction.lengthSquared

@@ -1,5 +1,7 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The search of a scene's layers: objects its common scale cannot hold,
 /// traced at their own (`LengthScale.layers`).

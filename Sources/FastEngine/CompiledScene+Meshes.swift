@@ -1,5 +1,7 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The scene's triangles compiled into records, mesh by mesh, straight from
 /// the model's indexed storage (`TriangleMesh`): each shared vertex is put

@@ -1,5 +1,7 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Shapes of kinds the fast engine does not specialise (`SceneObject.shape`,
 /// docs/ADDING-A-SHAPE.md): tested after its own kinds, through each
@@ -40,5 +42,39 @@ extension CompiledScene {
   /// The hit of shape `index` found by `testShapes`: its nearest.
   func shapeHit(_ index: Int, _ ray: CameraRay<Scalar>) -> Hit<Double>? {
     shapes[index].intersect(shapeRay(ray), after: 0, before: .infinity)
+  }
+}
+
+/// A shape of one's own in the world: hit the course's way when a
+/// transform places it, the ray taken into the shape's space by M⁻¹ (its
+/// direction not renormalised, so that t means the same point in both
+/// spaces) and the normal brought back by the inverse transpose.
+struct WorldShape: Hittable {
+  let placed: PlacedShape
+
+  init(_ placed: PlacedShape) {
+    self.placed = placed
+  }
+
+  func intersect(
+    _ ray: Ray<Double>, after tMin: Double, before tMax: Double
+  ) -> Hit<Double>? {
+    guard let (matrix, inverse) = placed.placement else {
+      return placed.shape.intersect(ray, after: tMin, before: tMax)
+    }
+    let local = Ray(
+      origin: inverse.transformPoint(ray.origin),
+      direction: inverse.transformDirection(ray.direction))
+    guard var hit = placed.shape.intersect(local, after: tMin, before: tMax)
+    else { return nil }
+    hit.normal = matrix.transformNormal(hit.normal)
+    return hit
+  }
+
+  var boundingBox: BoundingBox? {
+    guard let (matrix, _) = placed.placement else {
+      return placed.shape.boundingBox
+    }
+    return placed.shape.boundingBox?.transformed(by: matrix)
   }
 }

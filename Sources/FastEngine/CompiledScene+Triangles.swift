@@ -1,5 +1,7 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The ordinary triangles' searches: through their hierarchy, one by one,
 /// or projected onto screen tiles (`ScreenTiles`), each pixel's ray then
@@ -8,7 +10,7 @@ extension CompiledScene {
   /// The count of ordinary triangles from which renders project them onto
   /// screen tiles (`ScreenTiles`) instead of building their hierarchy
   /// (measured: docs/PERFORMANCE.md, "Thresholds").
-  public static var triangleProjectionThreshold: Int { 12 }
+  package static var triangleProjectionThreshold: Int { 12 }
 
   /// Builds the BVH over the ordinary triangles and puts them, their
   /// materials, normals and texture coordinates into its order (the large ones

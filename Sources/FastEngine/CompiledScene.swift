@@ -1,22 +1,24 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// A scene flattened for one camera, one precision and one intersection
 /// method: concrete arrays per primitive kind that the loop walks without
 /// dynamic dispatch. Built once per render; a scene with no planes has an
 /// empty plane array and its loop never enters the plane test.
-public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
-  public typealias Scalar = Kernel.Scalar
+package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
+  package typealias Scalar = Kernel.Scalar
 
-  public let camera: PerspectiveCamera<Scalar>
+  package let camera: PerspectiveCamera<Scalar>
   /// The eye in the frame of the records, scaled as they are.
-  public let rayOrigin: Vector3<Scalar>
+  package let rayOrigin: Vector3<Scalar>
   /// The eye in the world, for shading.
-  public let eye: Vector3<Scalar>
+  package let eye: Vector3<Scalar>
   /// 2^k: the records hold the scene's lengths times 2^−k, so a search's
   /// t is the world's t times 2^−k, exactly (`LengthScale`); 1 for every
   /// scene within the precision's comfortable range.
-  public let lengthScale: Scalar
+  package let lengthScale: Scalar
   var spheres: [Kernel.SphereRecord]
   var sphereMaterials: [Int32]
   var planes: [Kernel.PlaneRecord]
@@ -69,28 +71,28 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// Shapes of kinds the engine does not specialise, in the world's units,
   /// each tested through its own `Hittable.intersect` after a check of its
   /// box (`testShapes`); empty for every scene of the readers' own kinds.
-  var shapes: [any Hittable] = []
+  var shapes: [WorldShape] = []
   var shapeBoxes: [BoundingBox?] = []
   /// The eye in the world, in Double: where the shapes' rays start.
   let shapeEye: Vector3<Double>
   /// Objects the scene's common scale cannot hold, each group compiled at
   /// its own (`LengthScale.layers`) and searched after this scene's own
   /// search (`Renderer.store`); empty for every ordinary scene.
-  public internal(set) var layers: [CompiledScene] = []
-  public let materials: [Material<Scalar>]
+  package internal(set) var layers: [CompiledScene] = []
+  package let materials: [Material<Scalar>]
   /// `materials` without their texture paths, for shading.
   let surfaces: [Material<Scalar>.Surface]
   /// Per material, its texture; empty when no material has one or the
   /// render shades nothing.
-  public let textures: [Texture?]
-  public let lights: [Light<Scalar>]
-  public let ambient: RGB<Scalar>
-  public let background: RGB<Scalar>
+  package let textures: [Texture?]
+  package let lights: [Light<Scalar>]
+  package let ambient: RGB<Scalar>
+  package let background: RGB<Scalar>
 
-  public var sphereCount: Int { spheres.count }
-  public var planeCount: Int { planes.count }
-  public var usesHierarchy: Bool { hierarchy != nil }
-  public var usesTriangleHierarchy: Bool { triangleHierarchy != nil }
+  package var sphereCount: Int { spheres.count }
+  package var planeCount: Int { planes.count }
+  package var usesHierarchy: Bool { hierarchy != nil }
+  package var usesTriangleHierarchy: Bool { triangleHierarchy != nil }
 
   /// - Parameters:
   ///   - hierarchyThreshold: the sphere count from which a BVH is built
@@ -107,7 +109,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   ///   - textures: per material, the texture a shaded render maps onto
   ///     triangles with texture coordinates (see `TextureLoader`); empty
   ///     for untextured scenes and for renders without a shaded image.
-  public init(
+  package init(
     _ scene: Scene, kernel: Kernel.Type = Kernel.self,
     textures: [Texture?] = [],
     hierarchyThreshold: Int = BoundingVolumeHierarchy<Scalar>.defaultThreshold,
@@ -239,7 +241,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       ellipsoidMaterials.append(
         Int32(truncatingIfNeeded: ellipsoid.sphere.materialIndex))
     }
-    shapes = all.shapes
+    shapes = all.shapes.map { WorldShape($0) }
     shapeBoxes = shapes.map(\.boundingBox)
   }
 
@@ -250,7 +252,7 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// from 300 in Float, where projection measured 8–25 % slower below
   /// 300, for reasons not yet pinned down (docs/PERFORMANCE.md,
   /// "Thresholds").
-  public static var projectionThreshold: Int {
+  package static var projectionThreshold: Int {
     Scalar.significandBitCount > Float.significandBitCount ? 1 : 300
   }
 
@@ -259,13 +261,13 @@ public struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// scene at 16 samples rendered 11 % faster so than culled per tile,
   /// random scenes of 1 to 200 spheres within ±4 % (docs/PERFORMANCE.md,
   /// "Thresholds").
-  public static var supersampledProjectionThreshold: Int { 1 }
+  package static var supersampledProjectionThreshold: Int { 1 }
 
-  public var triangleCount: Int { triangles.count }
-  public var ellipsoidCount: Int { ellipsoids.count }
+  package var triangleCount: Int { triangles.count }
+  package var ellipsoidCount: Int { ellipsoids.count }
 
   /// What a camera ray hit first.
-  public enum Nearest: Sendable {
+  package enum Nearest: Sendable {
     case sphere(Int)
     case plane(Int)
     /// Its barycentric weights are found again for the normal: carried

@@ -1,5 +1,7 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// A sphere under a non-similarity transform, stored in its own space, the
 /// course's way: rays carried there by M⁻¹ (the eye once, in Double; the
@@ -14,8 +16,8 @@ import SceneModel
 /// space loses ε times the eye's distance in radii to the closest
 /// approach's cancellation: a disc of aspect 10⁶ loses hits and reverses
 /// normals in Float.
-public struct ObjectSpaceEllipsoid<Kernel: IntersectionKernel>: Sendable {
-  public typealias Scalar = Kernel.Scalar
+package struct ObjectSpaceEllipsoid<Kernel: IntersectionKernel>: Sendable {
+  package typealias Scalar = Kernel.Scalar
   var sphere: Kernel.SphereRecord
   /// The eye in object space, in the kernel's frame.
   var origin: Vector3<Scalar>
@@ -60,23 +62,23 @@ public struct ObjectSpaceEllipsoid<Kernel: IntersectionKernel>: Sendable {
 }
 
 extension NaiveKernel {
-  public typealias EllipsoidRecord = ObjectSpaceEllipsoid<NaiveKernel>
+  package typealias EllipsoidRecord = ObjectSpaceEllipsoid<NaiveKernel>
 
-  public static func makeEllipsoid(
+  package static func makeEllipsoid(
     _ ellipsoid: TransformedSphere<Double>, eye: Vector3<Double>
   ) -> EllipsoidRecord {
     ObjectSpaceEllipsoid(ellipsoid, eye: eye)
   }
 
   @inline(__always)
-  public static func intersect(
+  package static func intersect(
     _ record: EllipsoidRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
   ) -> Scalar? {
     record.intersect(ray, before: tMax)
   }
 
   @inline(__always)
-  public static func normal(
+  package static func normal(
     _ record: EllipsoidRecord, _ ray: CameraRay<Scalar>, t: Scalar
   ) -> Vector3<Scalar> {
     record.normal(ray, t: t)
@@ -97,7 +99,7 @@ extension NaiveKernel {
 /// flag chooses, rather than an enum: a search copied the enum's payload
 /// out of the array on every test, which made an ellipsoid's test twice
 /// as slow.
-public struct StableEllipsoid<Scalar: RayScalar>: Sendable {
+package struct StableEllipsoid<Scalar: RayScalar>: Sendable {
   var usesObjectSpace: Bool
   var frame: EllipsoidFrame<Scalar>
   var objectSpace: ObjectSpaceEllipsoid<StableKernel<Scalar>>
@@ -141,16 +143,16 @@ public struct StableEllipsoid<Scalar: RayScalar>: Sendable {
 }
 
 extension StableKernel {
-  public typealias EllipsoidRecord = StableEllipsoid<Scalar>
+  package typealias EllipsoidRecord = StableEllipsoid<Scalar>
 
-  public static func makeEllipsoid(
+  package static func makeEllipsoid(
     _ ellipsoid: TransformedSphere<Double>, eye: Vector3<Double>
   ) -> EllipsoidRecord {
     StableEllipsoid(ellipsoid, eye: eye)
   }
 
   @inline(__always)
-  public static func intersect(
+  package static func intersect(
     _ record: EllipsoidRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
   ) -> Scalar? {
     record.usesObjectSpace
@@ -162,7 +164,7 @@ extension StableKernel {
   /// function (`CompiledScene.normal(of:)`), which it would otherwise
   /// grow by both forms' code.
   @inline(never)
-  public static func normal(
+  package static func normal(
     _ record: EllipsoidRecord, _ ray: CameraRay<Scalar>, t: Scalar
   ) -> Vector3<Scalar> {
     record.usesObjectSpace

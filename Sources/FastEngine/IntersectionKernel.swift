@@ -1,11 +1,13 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The parts of the render loop that depend on the intersection method: how
 /// spheres and planes are stored and tested. The loop is generic over it and
 /// specialised for each method and precision, so no test dispatches
 /// dynamically.
-public protocol IntersectionKernel: Sendable {
+package protocol IntersectionKernel: Sendable {
   associatedtype Scalar: RayScalar
   associatedtype SphereRecord: Sendable
   associatedtype PlaneRecord: Sendable
@@ -71,41 +73,41 @@ public protocol IntersectionKernel: Sendable {
 
 /// The course's method in world coordinates, recomputing o − centre and
 /// |f|² − r² for every ray in the render's precision, as the course does.
-public enum NaiveKernel<Scalar: RayScalar>: IntersectionKernel {
-  public struct SphereRecord: Sendable {
+package enum NaiveKernel<Scalar: RayScalar>: IntersectionKernel {
+  package struct SphereRecord: Sendable {
     var center: Vector3<Scalar>
     var radius: Scalar
   }
 
-  public struct PlaneRecord: Sendable {
+  package struct PlaneRecord: Sendable {
     var normal: Vector3<Scalar>
     var offset: Scalar
   }
 
-  public static func frameOrigin(eye: Vector3<Double>) -> Vector3<Scalar> {
+  package static func frameOrigin(eye: Vector3<Double>) -> Vector3<Scalar> {
     Vector3(eye)
   }
 
-  public static func makeSphere(
+  package static func makeSphere(
     _ sphere: Sphere<Double>, eye: Vector3<Double>
   ) -> SphereRecord {
     SphereRecord(center: Vector3(sphere.center), radius: Scalar(sphere.radius))
   }
 
-  public static func makePlane(
+  package static func makePlane(
     _ plane: Plane<Double>, eye: Vector3<Double>
   ) -> PlaneRecord {
     PlaneRecord(normal: Vector3(plane.normal), offset: Scalar(plane.offset))
   }
 
-  public static func centerAndRadius(_ record: SphereRecord) -> (
+  package static func centerAndRadius(_ record: SphereRecord) -> (
     Vector3<Scalar>, Scalar
   ) {
     (record.center, record.radius)
   }
 
   @inline(__always)
-  public static func intersect(
+  package static func intersect(
     _ record: SphereRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
   ) -> Scalar? {
     SphereIntersection.naiveRoot(
@@ -113,10 +115,10 @@ public enum NaiveKernel<Scalar: RayScalar>: IntersectionKernel {
       radius: record.radius, after: 0, before: tMax)
   }
 
-  public static var noMemo: Void { () }
+  package static var noMemo: Void { () }
 
   @inline(__always)
-  public static func intersect(
+  package static func intersect(
     _ record: SphereRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar,
     memo: inout Void
   ) -> Scalar? {
@@ -124,14 +126,14 @@ public enum NaiveKernel<Scalar: RayScalar>: IntersectionKernel {
   }
 
   @inline(__always)
-  public static func normal(
+  package static func normal(
     _ record: SphereRecord, _ ray: CameraRay<Scalar>, t: Scalar, memo: Void
   ) -> Vector3<Scalar> {
     normal(record, ray, t: t)
   }
 
   @inline(__always)
-  public static func normal(
+  package static func normal(
     _ record: SphereRecord, _ ray: CameraRay<Scalar>, t: Scalar
   ) -> Vector3<Scalar> {
     SphereIntersection.naiveNormal(
@@ -139,7 +141,7 @@ public enum NaiveKernel<Scalar: RayScalar>: IntersectionKernel {
   }
 
   @inline(__always)
-  public static func intersect(
+  package static func intersect(
     _ record: PlaneRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
   ) -> Scalar? {
     PlaneIntersection.naiveT(
@@ -147,7 +149,7 @@ public enum NaiveKernel<Scalar: RayScalar>: IntersectionKernel {
       direction: ray.direction, after: 0, before: tMax)
   }
 
-  public static func normal(_ record: PlaneRecord) -> Vector3<Scalar> {
+  package static func normal(_ record: PlaneRecord) -> Vector3<Scalar> {
     record.normal
   }
 }
@@ -159,15 +161,15 @@ public enum NaiveKernel<Scalar: RayScalar>: IntersectionKernel {
 /// Per ray that leaves only the cancellation-free quadratic of
 /// `SphereIntersection.stableRoot` and, for planes, a compensated n·d with
 /// the normal carried to twice the render's precision.
-public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
-  public struct SphereRecord: Sendable {
+package enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
+  package struct SphereRecord: Sendable {
     var offset: Vector3<Scalar>
     var radiusSquared: Scalar
     var c: Scalar
     var inverseRadius: Scalar
   }
 
-  public struct PlaneRecord: Sendable {
+  package struct PlaneRecord: Sendable {
     var normal: Vector3<Scalar>
     /// normal − Scalar(normal) in the scene's Double: zero for Double
     /// renders, the rest of the normal's digits for Float ones, so that a
@@ -179,11 +181,11 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
     var isAxisAligned: Bool
   }
 
-  public static func frameOrigin(eye: Vector3<Double>) -> Vector3<Scalar> {
+  package static func frameOrigin(eye: Vector3<Double>) -> Vector3<Scalar> {
     .zero
   }
 
-  public static func makeSphere(
+  package static func makeSphere(
     _ sphere: Sphere<Double>, eye: Vector3<Double>
   ) -> SphereRecord {
     let relative = CameraRelative.sphere(
@@ -194,7 +196,7 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
       inverseRadius: 1 / radius)
   }
 
-  public static func makePlane(
+  package static func makePlane(
     _ plane: Plane<Double>, eye: Vector3<Double>
   ) -> PlaneRecord {
     let normal = Vector3<Scalar>(plane.normal)
@@ -208,21 +210,21 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
       isAxisAligned: PlaneIntersection.isAxisAligned(normal) && tail == .zero)
   }
 
-  public static func centerAndRadius(_ record: SphereRecord) -> (
+  package static func centerAndRadius(_ record: SphereRecord) -> (
     Vector3<Scalar>, Scalar
   ) {
     (record.offset, record.radiusSquared.squareRoot())
   }
 
   @inline(__always)
-  public static func intersect(
+  package static func intersect(
     _ record: SphereRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
   ) -> Scalar? {
     var memo = noMemo
     return root(record, ray, before: tMax, memo: &memo)
   }
 
-  public static var noMemo: SphereIntersection.ClosestApproach<Scalar>? {
+  package static var noMemo: SphereIntersection.ClosestApproach<Scalar>? {
     nil
   }
 
@@ -234,7 +236,7 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
   /// it is rejected first. Not in `stableRoot` itself: there it made the
   /// screen tiles' sphere loop, which never meets such spheres, 40% slower.
   @inline(__always)
-  public static func intersect(
+  package static func intersect(
     _ record: SphereRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar,
     memo: inout SphereIntersection.ClosestApproach<Scalar>?
   ) -> Scalar? {
@@ -258,14 +260,14 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
   /// when the eye is outside the sphere (c > 0): with c < 0 the smaller root
   /// is negative, and with c = 0 it is zero, which is not > 0.
   @inline(__always)
-  public static func normal(
+  package static func normal(
     _ record: SphereRecord, _ ray: CameraRay<Scalar>, t: Scalar
   ) -> Vector3<Scalar> {
     normal(record, ray, t: t, memo: noMemo)
   }
 
   @inline(__always)
-  public static func normal(
+  package static func normal(
     _ record: SphereRecord, _ ray: CameraRay<Scalar>, t: Scalar,
     memo: SphereIntersection.ClosestApproach<Scalar>?
   ) -> Vector3<Scalar> {
@@ -278,7 +280,7 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
   }
 
   @inline(__always)
-  public static func intersect(
+  package static func intersect(
     _ record: PlaneRecord, _ ray: CameraRay<Scalar>, before tMax: Scalar
   ) -> Scalar? {
     PlaneIntersection.stableT(
@@ -287,7 +289,7 @@ public enum StableKernel<Scalar: RayScalar>: IntersectionKernel {
       direction: ray.direction, after: 0, before: tMax)
   }
 
-  public static func normal(_ record: PlaneRecord) -> Vector3<Scalar> {
+  package static func normal(_ record: PlaneRecord) -> Vector3<Scalar> {
     record.normal
   }
 }

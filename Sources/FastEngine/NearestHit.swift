@@ -1,5 +1,7 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The nearest hit along one ray so far, and the tie rule every search of
 /// the fast engine keeps.

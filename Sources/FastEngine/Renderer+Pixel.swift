@@ -1,5 +1,7 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// What a pixel's nearest hit becomes: its depth, normal and colour, and
 /// the colour of a supersampled pixel.

@@ -1,5 +1,7 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The pixel loop of `ScreenTiles` for a supersampled render: the tile's
 /// searches (`renderProjectedTile`'s) done once per sample, every pixel's

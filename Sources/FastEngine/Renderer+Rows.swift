@@ -1,13 +1,12 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The fast engine's rows, handed out as the course engine's are
 /// (`RowBatches`).
 extension Renderer {
   static var rowsPerBatch: Int { RowBatches.rowsPerBatch }
-
-  /// The number of processors online, the default thread count.
-  public static var availableCores: Int { RowBatches.availableCores }
 
   static func forEachRowBatch(
     rows: Int, threads: Int, progress: (@Sendable (Int) -> Void)?,

@@ -1,5 +1,7 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The pixel loop of `ScreenTiles`: a tile's rays generated together, then
 /// each listed sphere tested against the rays of its box's pixels only,

@@ -1,5 +1,7 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The pixel loop: rows in tiles, each tile's rays generated together,
 /// then each pixel's nearest hit by the scene's sphere search.

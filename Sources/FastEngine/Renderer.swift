@@ -1,16 +1,18 @@
 import Dispatch
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The per-pixel loop: one camera ray per pixel, nearest hit, then only the
 /// quantities the requested outputs need.
-public enum Renderer {
+package enum Renderer {
   /// Renders `scene` into the buffers `settings.outputs` asks for.
   ///
   /// Rows are handed out to `settings.threads` workers in small batches; every
   /// pixel is computed by the same code whatever the thread count, so the
   /// result is identical bit for bit.
-  public static func render<Kernel: IntersectionKernel>(
+  package static func render<Kernel: IntersectionKernel>(
     _ scene: CompiledScene<Kernel>, settings: RenderSettings,
     progress: (@Sendable (Int) -> Void)? = nil
   ) -> RenderBuffers<Kernel.Scalar> {
@@ -18,13 +20,13 @@ public enum Renderer {
   }
 
   /// How a render found each pixel's nearest sphere.
-  public enum SphereSearch: Sendable, Equatable, CustomStringConvertible {
+  package enum SphereSearch: Sendable, Equatable, CustomStringConvertible {
     case everySphere, culledPerTile, hierarchy, screenTiles
     /// The course engine: every object of the group by the hit protocol.
     case everyObject
 
     /// In words for `--stats`.
-    public var description: String {
+    package var description: String {
       switch self {
       case .everySphere: "testing each"
       case .culledPerTile: "culling per tile"
@@ -36,11 +38,11 @@ public enum Renderer {
   }
 
   /// How a render found each pixel's nearest triangle.
-  public enum TriangleSearch: Sendable, Equatable, CustomStringConvertible {
+  package enum TriangleSearch: Sendable, Equatable, CustomStringConvertible {
     case everyTriangle, hierarchy, screenTiles
 
     /// In words for `--stats`.
-    public var description: String {
+    package var description: String {
       switch self {
       case .everyTriangle: "testing each"
       case .hierarchy: "BVH"
@@ -56,7 +58,7 @@ public enum Renderer {
   /// - Parameter recycling: an earlier render's buffers of the same size
   ///   and outputs, written over instead of allocating new ones (repeated
   ///   renders, `RenderSettings.repeats`): memory already faulted in.
-  static func renderReportingSearch<Kernel: IntersectionKernel>(
+  package static func renderReportingSearch<Kernel: IntersectionKernel>(
     _ scene: CompiledScene<Kernel>, settings: RenderSettings,
     overlapLimit: Int = ScreenTiles<Kernel>.overlapLimit,
     progress: (@Sendable (Int) -> Void)? = nil,
@@ -96,7 +98,7 @@ public enum Renderer {
   /// Renders with camera rays generated in precision `RayPrecision` and then
   /// converted exactly to the kernel's wider type: the reference path, which
   /// intersects the very rays a Float or Double render traced, in Float80.
-  public static func render<
+  package static func render<
     Kernel: IntersectionKernel, RayPrecision: RayScalar
   >(
     _ scene: CompiledScene<Kernel>, settings: RenderSettings,

@@ -1,7 +1,10 @@
 import ArgumentParser
 import Measurement
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// `raytrace compare A B`: how far two images are apart, where, and the
 /// mistake it looks like.

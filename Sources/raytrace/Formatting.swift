@@ -1,7 +1,11 @@
 import FastEngine
+import Pipeline
 import Measurement
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 
 /// Standard output, written line by line with write(2) so that a failed
@@ -16,7 +20,7 @@ enum StandardOutput {
     var written = 0
     while written < bytes.count {
       let result = bytes[written...].withUnsafeBytes {
-        SceneModel.write(1, $0.baseAddress, $0.count)
+        PlatformSupport.write(1, $0.baseAddress, $0.count)
       }
       if result < 0 && errno == EINTR { continue }
       guard result > 0 else {

@@ -1,7 +1,11 @@
 import FastEngine
+import Pipeline
 import Measurement
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 
 /// A progress bar on standard error for renders that take more than about

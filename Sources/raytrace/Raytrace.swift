@@ -1,8 +1,12 @@
 import ArgumentParser
 import FastEngine
+import Pipeline
 import Measurement
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 @main
 struct Raytrace: ParsableCommand {

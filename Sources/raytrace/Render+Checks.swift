@@ -1,8 +1,12 @@
 import ArgumentParser
 import FastEngine
+import Pipeline
 import Measurement
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// What the command line is checked for before anything is rendered:
 /// outputs by identity, the image's memory, depth ranges.
@@ -126,7 +130,7 @@ extension Render {
     var needs: [String: (bytes: Int, example: String)] = [:]
     for file in plan.files {
       let channels = file.kind == .depth ? 1 : 3
-      let scalar = plan.settings.precision == .float ? 4 : 8
+      let scalar = plan.request.fast.precision == .float ? 4 : 8
       let bytes: Int
       switch file.format {
       case .png: continue

@@ -1,21 +1,27 @@
 import ArgumentParser
 import enum Course.CourseEngine
-import FastEngine
+import Pipeline
 import Measurement
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 extension Render {
-  /// `--check`: both engines in memory, compared output by output.
+  /// `--check`: each engine renders once, every buffer kept; the files
+  /// given are written from the course engine's, and the two compared
+  /// output by output.
   func checkEngines(_ scene: Scene, _ plan: Plan) throws {
-    var settings = plan.settings
+    let png = try preflight(plan)
+    var request = plan.request
     let requested = plan.files.reduce(into: RenderOutputs()) {
       $0.formUnion($1.kind)
     }
     // Every buffer is kept, for the report of the first differing pixel.
-    settings.outputs = [.depth, .normals, .shaded]
-    settings.quantizedOutputs = []
-    settings.repeats = 0
+    request.settings.outputs = [.depth, .normals, .shaded]
+    request.settings.quantizedOutputs = []
+    request.repeats = 0
     let textures: [Texture?]
     do {
       textures = try TextureLoader.load(for: scene)
@@ -23,11 +29,19 @@ extension Render {
       printError(error.description)
       throw ExitCode.failure
     }
-    settings.engine = .course
-    let course = CourseEngine.render(
-      scene, textures: textures, settings: settings)
-    settings.engine = .fast
-    let fast = Self.fastBuffers(scene, textures: textures, settings: settings)
+    let settings = request.settings
+    let (course, fast) = EngineRenders.render(
+      scene, request: request, textures: textures)
+    if !plan.files.isEmpty {
+      do {
+        try RenderJob.write(
+          course, request: plan.request, files: plan.files,
+          depthRange: plan.depthRange, png: png)
+      } catch {
+        printError("raytrace: error: \(error)")
+        throw ExitCode.failure
+      }
+    }
     let check = EngineCheck(
       scene: scene, course: course, fast: fast, style: settings.style,
       outputs: requested.isEmpty ? [.shaded, .normals, .depth] : requested,
@@ -38,13 +52,14 @@ extension Render {
     }
     let need = 0.999
     printOutput(
-      "course engine against fast engine (\(settings.precision), "
-        + "\(settings.method)), \(settings.width)×\(settings.height):")
+      "course engine against fast engine (\(request.fast.precision), "
+        + "\(request.fast.method)), \(settings.width)×\(settings.height):")
     var failed = false
     for output in check.outputs {
       printOutput("\n\(output.name):")
       let names = ("course", "fast")
-      for line in output.comparison.report(names.0, names.1, need: need).dropFirst()
+      for line in output.comparison.report(names.0, names.1, need: need)
+        .dropFirst()
       {
         printOutput("  " + line)
       }
@@ -52,29 +67,5 @@ extension Render {
       if !output.passes(need: need) { failed = true }
     }
     if failed { throw ExitCode.failure }
-  }
-
-  /// The fast engine's buffers in the render's precision and method, as
-  /// Double.
-  static func fastBuffers(
-    _ scene: Scene, textures: [Texture?], settings: RenderSettings
-  ) -> RenderBuffers<Double> {
-    func render<Kernel: IntersectionKernel>(_: Kernel.Type)
-      -> RenderBuffers<Double>
-    {
-      let buffers = Renderer.render(
-        CompiledScene<Kernel>(scene, textures: textures), settings: settings)
-      return RenderBuffers(
-        width: buffers.width, height: buffers.height,
-        depth: buffers.depth.map(Double.init),
-        normals: buffers.normals.map(Vector3<Double>.init),
-        color: buffers.color.map(Vector3<Double>.init))
-    }
-    switch (settings.precision, settings.method) {
-    case (.double, .stable): return render(StableKernel<Double>.self)
-    case (.double, .naive): return render(NaiveKernel<Double>.self)
-    case (.float, .stable): return render(StableKernel<Float>.self)
-    case (.float, .naive): return render(NaiveKernel<Float>.self)
-    }
   }
 }

@@ -1,8 +1,12 @@
 import ArgumentParser
 import FastEngine
+import Pipeline
 import Measurement
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// `--stats`: what a render did, on standard error.
 extension Render {
@@ -10,6 +14,7 @@ extension Render {
     _ report: RenderReport, scenePath: String, parseSeconds: Double
   ) {
     let settings = report.settings
+    let request = report.request
     printError(
       "scene: \(scenePath): \(report.spheres) spheres, \(report.planes) "
         + "planes, "
@@ -20,9 +25,9 @@ extension Render {
     )
     printError(
       "size: \(settings.width)x\(settings.height), \(report.rays) rays, "
-        + "precision \(settings.precision.rawValue), intersection "
-        + "\(settings.method.rawValue), "
-        + "engine \(settings.engine.rawValue), "
+        + "precision \(request.fast.precision.rawValue), intersection "
+        + "\(request.fast.method.rawValue), "
+        + "engine \(request.engine.rawValue), "
         + "style \(settings.style.rawValue), threads \(settings.threads)")
     printError(
       "outputs: \(settings.outputs.names.joined(separator: ", "))"
@@ -41,7 +46,7 @@ extension Render {
     }
     printError("parse: \(seconds(parseSeconds))")
     printError("compile: \(seconds(report.compileSeconds))")
-    let repeats = settings.repeats
+    let repeats = request.repeats
     printError(
       "render: \(seconds(report.renderSeconds)), "
         + "\(formatted(report.megaraysPerSecond, digits: 3)) Mrays/s"

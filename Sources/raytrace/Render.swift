@@ -3,9 +3,13 @@ import ArgumentParser
 import enum Course.CourseEngine
 import enum Course.CourseShapes
 import FastEngine
+import Pipeline
 import Measurement
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 struct Render: ParsableCommand {
   static let configuration = CommandConfiguration(
@@ -203,7 +207,8 @@ struct Render: ParsableCommand {
   /// The checked form of the options, made in `validate()`.
   struct Plan {
     var scenePath: String
-    var settings: RenderSettings
+    var request: RenderRequest
+    var settings: RenderSettings { request.settings }
     var files: [OutputFile]
     var depthRange: ClosedRange<Double>?
   }
@@ -301,10 +306,13 @@ struct Render: ParsableCommand {
     var settings = RenderSettings(
       width: width, height: height, outputs: [],
       style: style ?? (input != nil ? .mit : .course),
-      method: intersection ?? .stable, precision: precision ?? .double,
-      threads: threads ?? Renderer.availableCores)
+      threads: threads ?? Platform.availableCores)
     settings.samples = samples
     settings.filter = filter
+    var request = RenderRequest(
+      settings,
+      fast: FastOptions(
+        precision: precision ?? .double, method: intersection ?? .stable))
     // The course engine computes in double by the stable quadratic: a
     // request for float or naive asks for the fast engine, unless the
     // course engine is named.
@@ -318,16 +326,16 @@ struct Render: ParsableCommand {
       throw ValidationError(
         "--engine course solves the sphere's quadratic one way (stable); "
           + "drop --intersection naive or use --engine fast.")
-    case let engine?: settings.engine = engine
-    case nil: settings.engine = fastOnly && !check ? .fast : .course
+    case let engine?: request.engine = engine
+    case nil: request.engine = fastOnly && !check ? .fast : .course
     }
     guard (0...1000).contains(repeats) else {
       throw ValidationError(
         "--repeat must be between 0 and 1000; got \(repeats).")
     }
-    settings.repeats = repeats
+    request.repeats = repeats
     return Plan(
-      scenePath: scenePath, settings: settings, files: files, depthRange: range)
+      scenePath: scenePath, request: request, files: files, depthRange: range)
   }
 
   func run() throws {
@@ -347,7 +355,7 @@ struct Render: ParsableCommand {
       scene = try SceneReader.read(
         contentsOf: plan.scenePath,
         options: SceneOptions(
-          style: plan.settings.style, precision: plan.settings.precision,
+          style: plan.settings.style, precision: plan.request.fast.precision,
           shapes: CourseShapes.all))
     } catch {
       printError(error.description)
@@ -356,9 +364,9 @@ struct Render: ParsableCommand {
     let parseSeconds = clock.lap()
     // What the fast engine cannot hold at any scale it traces at, and,
     // when the course engine renders, what its own lengths cannot.
-    let usesCourse = plan.settings.engine == .course || check
+    let usesCourse = plan.request.engine == .course || check
     if let problem = LengthScale.problem(
-      scene, precision: plan.settings.precision)
+      scene, precision: plan.request.fast.precision)
       ?? (usesCourse ? LengthScale.unscaledProblem(scene) : nil)
     {
       printError(
@@ -369,7 +377,6 @@ struct Render: ParsableCommand {
     }
     try checkOutputs(plan.files, against: scene)
     if check {
-      if !plan.files.isEmpty { try render(scene, plan, parseSeconds: 0) }
       try checkEngines(scene, plan)
       return
     }
@@ -380,20 +387,7 @@ struct Render: ParsableCommand {
   private func render(_ scene: Scene, _ plan: Plan, parseSeconds: Double)
     throws
   {
-    do {
-      for file in plan.files {
-        try AtomicFile.checkWritable(file.path)
-      }
-    } catch {
-      printError("raytrace: error: \(error)")
-      throw ExitCode.failure
-    }
-    if let problem = Self.roomProblem(plan) {
-      printError("raytrace: error: \(problem)")
-      throw ExitCode.failure
-    }
-    var png = PNGOptions.default
-    png.compressionLevel = Int32(pngLevel)
+    let png = try preflight(plan)
     let report: RenderReport
     do {
       let bar = ProgressBar(rows: plan.settings.height)
@@ -403,9 +397,8 @@ struct Render: ParsableCommand {
         progress = { finished in bar.update(finished) }
       }
       report = try RenderJob.run(
-        scene: scene, settings: plan.settings, files: plan.files,
-        depthRange: plan.depthRange, png: png,
-        courseEngine: Self.courseEngine, progress: progress)
+        scene: scene, request: plan.request, files: plan.files,
+        depthRange: plan.depthRange, png: png, progress: progress)
     } catch let error as SceneError {
       // A texture that cannot be read, named as a scene error is.
       printError(error.description)
@@ -417,7 +410,7 @@ struct Render: ParsableCommand {
     if stats {
       printStats(report, scenePath: plan.scenePath, parseSeconds: parseSeconds)
     }
-    if engine == nil, plan.settings.engine == .course,
+    if engine == nil, plan.request.engine == .course,
       report.firstRenderSeconds > Self.slowCourseRender
     {
       printError(
@@ -433,10 +426,24 @@ struct Render: ParsableCommand {
 
   nonisolated(unsafe) private static var keptUntilExit: Scene?
 
-  /// The course engine (the course target), handed to `RenderJob`.
-  static let courseEngine: CourseRenderer = { scene, textures, settings, progress in
-    CourseEngine.render(
-      scene, textures: textures, settings: settings, progress: progress)
+  /// Before a render: every file's folder writable and room for the
+  /// files (one line and exit 1 otherwise); the PNG options to write with.
+  func preflight(_ plan: Plan) throws -> PNGOptions {
+    do {
+      for file in plan.files {
+        try AtomicFile.checkWritable(file.path)
+      }
+    } catch {
+      printError("raytrace: error: \(error)")
+      throw ExitCode.failure
+    }
+    if let problem = Self.roomProblem(plan) {
+      printError("raytrace: error: \(problem)")
+      throw ExitCode.failure
+    }
+    var png = PNGOptions.default
+    png.compressionLevel = Int32(pngLevel)
+    return png
   }
 
   /// Seconds of a default render after which the fast engine is named.

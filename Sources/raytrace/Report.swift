@@ -1,9 +1,13 @@
 import ArgumentParser
 import enum Course.CourseShapes
 import FastEngine
+import Pipeline
 import Measurement
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// `raytrace report`: error against run time for every precision and method.
 struct Report: ParsableCommand {
@@ -113,7 +117,7 @@ struct Report: ParsableCommand {
   func run() throws {
     let paths = scenes.isEmpty ? try defaultScenePaths() : scenes
     let (width, height) = (size[0], size[1])
-    let threads = threads ?? Renderer.availableCores
+    let threads = threads ?? Platform.availableCores
     var rows: [AccuracyRow] = []
     var encodedMaps: [(bytes: [UInt8], path: String)] = []
     if let heatmaps {

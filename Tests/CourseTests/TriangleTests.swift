@@ -1,5 +1,6 @@
 import Course
-import SceneModel
+import Geometry
+import SceneDescription
 import XCTest
 
 

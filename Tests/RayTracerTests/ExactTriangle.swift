@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Exact references for triangles, in `ExactDyadic` (exact dyadic
 /// rationals, independent of the project's error-free transformations).

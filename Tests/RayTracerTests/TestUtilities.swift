@@ -3,7 +3,10 @@ import XCTest
 @testable import FastEngine
 @testable import Measurement
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 // Helpers shared by the unit tests: a seedable generator, log-uniform
 // sampling, errors measured in ulps, and reference intersections computed in

@@ -1,5 +1,7 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 extension BoundingVolumeHierarchy {
   /// Puts `elements`, given in the original order, into leaf order in

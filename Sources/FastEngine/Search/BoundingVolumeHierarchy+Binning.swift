@@ -1,5 +1,7 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 // The binned surface-area heuristic's bookkeeping: the boxes, bounds and
 // bins a build partitions.

@@ -1,6 +1,8 @@
 import Dispatch
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 extension BoundingVolumeHierarchy {
   /// The state of one build: nodes so far and bins reused by every node.

@@ -1,5 +1,7 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 // Traversal: the nearest hit of one ray, equal to testing every primitive.
 

@@ -1,5 +1,7 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// A bounding volume hierarchy over a scene's spheres, for camera rays: the
 /// nearest sphere hit without testing every sphere.
@@ -49,13 +51,13 @@ import SceneModel
 ///   docs/PERFORMANCE.md). A ray visits
 ///   O(log n) nodes when the spheres do not overlap much, and all of them
 ///   in the worst case (every sphere along the ray).
-public struct BoundingVolumeHierarchy<Scalar: RayScalar>: Sendable {
+package struct BoundingVolumeHierarchy<Scalar: RayScalar>: Sendable {
   /// The sphere count from which a render builds the hierarchy: below it,
   /// testing every sphere is about as fast or faster.
   ///
   /// Measured where the hierarchy breaks even against the flat loop:
   /// docs/PERFORMANCE.md, "Thresholds".
-  public static var defaultThreshold: Int { 12 }
+  package static var defaultThreshold: Int { 12 }
 
   /// One node: 32 bytes in Float, 56 in Double.
   struct Node: Equatable, Sendable {

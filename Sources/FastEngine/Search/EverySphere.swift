@@ -1,5 +1,7 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The flat loop: every sphere, in scene order.
 struct EverySphere: NearestSphereSearch {

@@ -1,5 +1,7 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Pixels from `firstColumn` to `lastColumn` and `firstRow` to `lastRow`,
 /// ends included; empty when first > last.

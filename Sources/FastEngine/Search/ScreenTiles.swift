@@ -1,5 +1,7 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Spheres sorted by the screen tiles their silhouettes may cover: the
 /// primary-ray search turned around, object by object, as molecular viewers

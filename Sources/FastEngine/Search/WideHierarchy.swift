@@ -1,5 +1,7 @@
-import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// A `BoundingVolumeHierarchy` regrouped four children to a node, with the
 /// children's boxes stored side by side in Float relative to the rays'

@@ -1,10 +1,13 @@
 import FastEngine
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// One fixed workload of `raytrace bench`.
-public struct Workload: Sendable {
-  public enum Source: Sendable {
+package struct Workload: Sendable {
+  package enum Source: Sendable {
     /// A scene file of the project, relative to its root.
     case file(String)
     /// `RandomSpheres` with this many spheres, written once to the data
@@ -18,20 +21,20 @@ public struct Workload: Sendable {
     case reference(String)
   }
 
-  public var name: String
-  public var source: Source
-  public var width: Int
-  public var height: Int
+  package var name: String
+  package var source: Source
+  package var width: Int
+  package var height: Int
   /// Nil: all cores.
-  public var threads: Int?
-  public var outputs: RenderOutputs
+  package var threads: Int?
+  package var outputs: RenderOutputs
   /// Rays per pixel of the shaded image (`--samples`).
-  public var samples = 1
+  package var samples = 1
 
   /// The workloads of the README's table: the course-like scene at two
   /// sizes, random spheres from 100 to 10⁶, what leaving outputs out saves,
   /// and one thread against all.
-  public static let standard: [Workload] = [
+  package static let standard: [Workload] = [
     Workload(
       name: "course scene", source: .file("scenes/spheres.txt"), width: 800,
       height: 800, outputs: [.depth, .normals]),
@@ -103,7 +106,7 @@ public struct Workload: Sendable {
       height: 800, outputs: [.shaded], samples: 16),
   ]
 
-  public init(
+  package init(
     name: String, source: Source, width: Int, height: Int, threads: Int? = nil,
     outputs: RenderOutputs, samples: Int = 1
   ) {
@@ -118,7 +121,7 @@ public struct Workload: Sendable {
 
   /// The generated scenes' object count; nil for a scene file, whose
   /// count the run reports (`BenchmarkResult.objects`).
-  public var generatedCount: Int? {
+  package var generatedCount: Int? {
     switch source {
     case .file, .reference: nil
     case .randomSpheres(let count), .randomMesh(let count): count
@@ -127,27 +130,27 @@ public struct Workload: Sendable {
 }
 
 /// One measured row.
-public struct BenchmarkResult: Sendable {
-  public var workload: Workload
-  public var scenePath: String
-  public var threads: Int
+package struct BenchmarkResult: Sendable {
+  package var workload: Workload
+  package var scenePath: String
+  package var threads: Int
   /// Median render time (the `render:` line of `--stats`) over the runs,
   /// each the first and only render of its process.
-  public var renderSeconds: Double
+  package var renderSeconds: Double
   /// The median of 2 × `runs` renders repeated in one process after its
   /// first (`--repeat`): a warm render, as peers that time repeated renders
   /// in one process report it.
-  public var warmRenderSeconds: Double
+  package var warmRenderSeconds: Double
   /// Median wall time of the whole process: parse, build, render, write.
-  public var endToEndSeconds: Double
+  package var endToEndSeconds: Double
   /// The largest resident set of any run, in bytes.
-  public var peakBytes: Int
+  package var peakBytes: Int
   /// Spheres, planes, triangles and transformed spheres, as the render
   /// reported them (`--stats`).
-  public var objects: Int?
+  package var objects: Int?
 
   /// Camera rays per second of the warm render, every sample counted.
-  public var megaraysPerSecond: Double {
+  package var megaraysPerSecond: Double {
     Double(workload.width * workload.height * workload.samples)
       / warmRenderSeconds / 1e6
   }
@@ -156,15 +159,15 @@ public struct BenchmarkResult: Sendable {
 /// Runs workloads as separate processes of the `raytrace` executable, so
 /// that each one's peak memory is its own (`wait4`'s resource usage) and the
 /// end-to-end time is what a user waits for.
-public struct Benchmark {
-  public var executable: String
-  public var dataFolder: String
-  public var runs: Int
+package struct Benchmark {
+  package var executable: String
+  package var dataFolder: String
+  package var runs: Int
   /// The MIT assignment's scenes, for the bunny and arch workloads; nil
   /// leaves them out.
-  public var referenceFolder: String?
+  package var referenceFolder: String?
 
-  public init(
+  package init(
     executable: String, dataFolder: String, runs: Int,
     referenceFolder: String? = nil
   ) {
@@ -176,18 +179,18 @@ public struct Benchmark {
 
   /// Whether `workload`'s scene can be had: a reference scene only where
   /// the reference folder holds it.
-  public func isAvailable(_ workload: Workload) -> Bool {
+  package func isAvailable(_ workload: Workload) -> Bool {
     guard case .reference(let name) = workload.source else { return true }
     guard let referenceFolder else { return false }
     return access("\(referenceFolder)/\(name)", R_OK) == 0
   }
 
-  public struct Failure: Error, CustomStringConvertible {
-    public var description: String
+  package struct Failure: Error, CustomStringConvertible {
+    package var description: String
   }
 
   /// The scene file for `workload`, writing a random scene on first use.
-  public func scenePath(for workload: Workload) throws -> String {
+  package func scenePath(for workload: Workload) throws -> String {
     switch workload.source {
     case .file(let path):
       return path
@@ -227,9 +230,9 @@ public struct Benchmark {
 
   /// One warm-up run (file cache), then `runs` timed ones, then one run
   /// rendering 2 × `runs` more times after its first for the warm median.
-  public func measure(_ workload: Workload) throws -> BenchmarkResult {
+  package func measure(_ workload: Workload) throws -> BenchmarkResult {
     let scene = try scenePath(for: workload)
-    let threads = workload.threads ?? Renderer.availableCores
+    let threads = workload.threads ?? Platform.availableCores
     var arguments = [
       scene, "--size", "\(workload.width)", "\(workload.height)",
       "--threads", "\(threads)", "--stats", "--engine", "fast",

@@ -1,6 +1,9 @@
 import FastEngine
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The same workload rendered by the peer, Mitsuba 3, through the course
 /// tools' `peer_mitsuba.py`, for `raytrace bench --peer`: its warm render
@@ -13,44 +16,44 @@ import SceneModel
 /// and with `--freeze` (its kernels recorded and replayed, which helps
 /// scenes of many shapes), and the better is kept: the comparison is with
 /// the peer at its best.
-public struct PeerBenchmark: Sendable {
+package struct PeerBenchmark: Sendable {
   /// The path of `peer_mitsuba.py`.
-  public var script: String
+  package var script: String
   /// The peer's timed renders after its first (`--runs`).
-  public var runs: Int
+  package var runs: Int
 
   /// Sphere scenes above this count are not given to the peer: its first
   /// render of 10⁵ spheres took 21 s (docs/PERFORMANCE.md).
-  public static let sphereLimit = 100_000
+  package static let sphereLimit = 100_000
 
-  public init(script: String, runs: Int) {
+  package init(script: String, runs: Int) {
     self.script = script
     self.runs = runs
   }
 
   /// What the peer reported.
-  public struct Result: Sendable, Equatable {
-    public var variant: String
+  package struct Result: Sendable, Equatable {
+    package var variant: String
     /// Building its scene (reading files, acceleration structure).
-    public var loadSeconds: Double
+    package var loadSeconds: Double
     /// Its first render, kernel compilation included.
-    public var firstSeconds: Double
+    package var firstSeconds: Double
     /// The median of its further renders.
-    public var medianSeconds: Double
-    public var megaraysPerSecond: Double
+    package var medianSeconds: Double
+    package var megaraysPerSecond: Double
     /// Whether this was the `--freeze` run.
-    public var frozen = false
+    package var frozen = false
   }
 
   /// Why `script` cannot be run, or nil if it can be read: checked before
   /// the benchmark starts rather than after its first workload.
-  public static func problem(withScript script: String) -> String? {
+  package static func problem(withScript script: String) -> String? {
     access(script, R_OK) == 0
       ? nil : "cannot read '\(script)': \(String(cString: strerror(errno)))"
   }
 
   /// Whether the peer is asked to render `workload` at all.
-  public static func accepts(_ workload: Workload) -> Bool {
+  package static func accepts(_ workload: Workload) -> Bool {
     if case .randomSpheres(let count) = workload.source {
       return count <= sphereLimit
     }
@@ -59,7 +62,7 @@ public struct PeerBenchmark: Sendable {
 
   /// The peer's better run of `scene` as `workload` sets it (size,
   /// threads, samples): as it is, and with `--freeze`.
-  public func measure(scene: String, _ workload: Workload) throws -> Result {
+  package func measure(scene: String, _ workload: Workload) throws -> Result {
     let plain = try run(scene: scene, workload, freeze: false)
     var frozen = try run(scene: scene, workload, freeze: true)
     frozen.frozen = true

@@ -1,6 +1,9 @@
 import FastEngine
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// A lumpy closed mesh of a given triangle count on a ground plane, in the
 /// course's text format with an OBJ file beside it: the shape of
@@ -8,7 +11,7 @@ import SceneModel
 /// longitude segments, fans at the poles, two triangles per cell, displaced
 /// along each vertex's direction by random bumps), drawn from SplitMix64 so
 /// that the benchmark needs nothing outside the project.
-public enum RandomMesh {
+package enum RandomMesh {
   /// Bands and segments with 2·segments·(bands − 1) = `count`, the bands as
   /// near the square root as a divisor allows; `count` is rounded up to an
   /// even number.
@@ -20,7 +23,7 @@ public enum RandomMesh {
   }
 
   /// The OBJ file: v and f lines, 1-based, counter-clockwise from outside.
-  public static func objText(count: Int, seed: UInt64 = 1) -> String {
+  package static func objText(count: Int, seed: UInt64 = 1) -> String {
     let (bands, segments) = grid(count: count)
     var generator = SplitMix64(seed: seed)
     // Bumps: a direction, a width in radians and a height.
@@ -85,7 +88,7 @@ public enum RandomMesh {
   }
 
   /// The scene naming the OBJ file `objName` (beside it).
-  public static func sceneText(objName: String) -> String {
+  package static func sceneText(objName: String) -> String {
     """
     PerspectiveCamera {
         center 3.6 3.2 7.6

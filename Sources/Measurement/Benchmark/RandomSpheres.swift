@@ -1,6 +1,9 @@
 import FastEngine
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Scenes of many random spheres in the course's text format, laid out as
 /// `../shared/tools/gen_spheres.py` lays them out (centres uniform in
@@ -8,8 +11,8 @@ import SceneModel
 /// the camera rays hit whatever the count; four materials; the camera on +z
 /// framing the cube's near face), but drawn from SplitMix64 so that the
 /// benchmark needs nothing outside the project.
-public enum RandomSpheres {
-  public static func sceneText(count: Int, seed: UInt64 = 1) -> String {
+package enum RandomSpheres {
+  package static func sceneText(count: Int, seed: UInt64 = 1) -> String {
     precondition(count > 0)
     let box = 10.0
     let angle = 30.0

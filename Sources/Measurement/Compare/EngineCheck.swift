@@ -1,20 +1,24 @@
+import FastEngine
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The course engine's images against the fast engine's, output by output,
 /// and what each engine hit at the first pixel where they differ
 /// (`raytrace SCENE --check`).
-public struct EngineCheck {
+package struct EngineCheck {
   /// What one engine hit along a pixel's ray: the object's index in the
   /// scene's group and its kind, t and the normal; nil for a miss.
-  public struct Found {
-    public var index: Int
-    public var kind: String
-    public var materialIndex: Int
-    public var t: Double
-    public var normal: Vector3<Double>
+  package struct Found {
+    package var index: Int
+    package var kind: String
+    package var materialIndex: Int
+    package var t: Double
+    package var normal: Vector3<Double>
 
-    public init(
+    package init(
       index: Int, kind: String, materialIndex: Int, t: Double,
       normal: Vector3<Double>
     ) {
@@ -27,22 +31,22 @@ public struct EngineCheck {
   }
 
   /// One output's comparison, and its first differing pixel's report.
-  public struct Output {
-    public var name: String
-    public var comparison: ImageComparison
-    public var pixel: [String]
+  package struct Output {
+    package var name: String
+    package var comparison: ImageComparison
+    package var pixel: [String]
     /// For normals: pixels where both engines hit and the raw normals
     /// point more than 2.6° apart, which an image of |n| can hide (a
     /// normal turned inside out draws the same |n|).
-    public var turnedNormals = 0
+    package var turnedNormals = 0
     /// Whether the output matches: its image within the tolerance on
     /// `need` of the pixels, and no normal turned.
-    public func passes(need: Double) -> Bool {
+    package func passes(need: Double) -> Bool {
       comparison.share >= need && turnedNormals == 0
     }
   }
 
-  public var outputs: [Output] = []
+  package var outputs: [Output] = []
 
   /// Compares the `outputs` (8-bit, as the style draws them; depth over
   /// `depthRange`, or the course engine's own range) of the two renders,
@@ -50,7 +54,7 @@ public struct EngineCheck {
   ///
   /// - Parameter probe: the ray of a pixel and the course engine's hit
   ///   there, object by object (`CourseEngine.probe`).
-  public init(
+  package init(
     scene: Scene, course: RenderBuffers<Double>, fast: RenderBuffers<Double>,
     style: ImageStyle, outputs requested: RenderOutputs,
     depthRange: ClosedRange<Double>?, tolerance: Double,
@@ -124,19 +128,20 @@ public struct EngineCheck {
   }
 
   /// The object the fast engine hit at depth `t`: of the scene's objects,
-  /// the one whose own hit (the scene model's, the fast engine's numerics)
-  /// is nearest `t`; t and the normal are the fast engine's own.
+  /// the one whose own hit (each compiled alone by the fast engine,
+  /// `CompiledScene.objectHits`) is nearest `t`; t and the normal are the
+  /// render's own.
   static func fastFound(
     _ scene: Scene, ray: Ray<Double>, t: Double, normal: Vector3<Double>
   ) -> Found? {
     guard t.isFinite else { return nil }
     var best: (index: Int, distance: Double, material: Int)?
-    for (index, object) in scene.root.objects.enumerated() {
-      guard let hit = object.intersect(ray, after: 0, before: .infinity)
-      else { continue }
+    for hit in CompiledScene<StableKernel<Double>>.objectHits(
+      scene, direction: ray.direction)
+    {
       let distance = abs(hit.t - t)
       if distance < (best?.distance ?? .infinity) {
-        best = (index, distance, hit.materialIndex)
+        best = (hit.index, distance, hit.materialIndex)
       }
     }
     guard let best else { return nil }

@@ -1,11 +1,14 @@
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 extension ImageComparison {
   /// What `raytrace compare` prints: the share within the tolerance and
   /// whether it meets `need`, the largest difference and where, and the
   /// pattern, in a few lines.
-  public func report(_ nameA: String, _ nameB: String, need: Double)
+  package func report(_ nameA: String, _ nameB: String, need: Double)
     -> [String]
   {
     let kind =
@@ -101,7 +104,7 @@ extension ImageComparison {
   /// A picture of the differences: A's brightness dimmed to a third, and
   /// each differing pixel in heat (dark red for a difference at the
   /// tolerance, yellow for the largest).
-  public func differenceImage(_ a: ReadImage, _ b: ReadImage) -> Image8 {
+  package func differenceImage(_ a: ReadImage, _ b: ReadImage) -> Image8 {
     let matcher = Matcher(eightBit: isEightBit, tolerance: tolerance)
     var largestFinite = 0.0
     for value in a.values where value.isFinite {

@@ -1,5 +1,8 @@
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Two images of the same size compared pixel by pixel, and what the
 /// differences look like (`raytrace compare`, `raytrace SCENE --check`).
@@ -7,35 +10,35 @@ import SceneModel
 /// A pixel matches when every channel is within the tolerance: a number of
 /// levels for 8-bit images, a relative bound |a − b| ≤ tol·max(|a|, |b|) for
 /// raw values (two infinities of the same sign, or two NaNs, match).
-public struct ImageComparison: Sendable {
-  public let width: Int
-  public let height: Int
-  public let channels: Int
-  public let isEightBit: Bool
-  public let tolerance: Double
+package struct ImageComparison: Sendable {
+  package let width: Int
+  package let height: Int
+  package let channels: Int
+  package let isEightBit: Bool
+  package let tolerance: Double
   /// Pixels that match, over all pixels.
-  public let share: Double
-  public let differingPixels: Int
+  package let share: Double
+  package let differingPixels: Int
   /// The largest difference of one channel (in levels, or relative for raw
   /// values), where it is, and both values; nil when nothing differs.
-  public let largest: Largest?
+  package let largest: Largest?
   /// The first differing pixel in row order (row, then column), or nil.
-  public let first: (column: Int, row: Int)?
+  package let first: (column: Int, row: Int)?
   /// What the differences look like, in a few words.
-  public let pattern: Pattern
+  package let pattern: Pattern
 
-  public struct Largest: Sendable {
-    public var difference: Double
-    public var column: Int
-    public var row: Int
-    public var channel: Int
-    public var a: Double
-    public var b: Double
+  package struct Largest: Sendable {
+    package var difference: Double
+    package var column: Int
+    package var row: Int
+    package var channel: Int
+    package var a: Double
+    package var b: Double
   }
 
   /// The shapes a difference takes: the mistakes a student makes, then
   /// where the differing pixels lie.
-  public enum Pattern: Sendable, Equatable {
+  package enum Pattern: Sendable, Equatable {
     /// No channel differs at all.
     case identical
     /// Every pixel within the tolerance, some not exactly equal.
@@ -68,12 +71,12 @@ public struct ImageComparison: Sendable {
   /// relative for raw values (about 8 ε of Float, the precision PFM
   /// stores: a Double render written as PFM and a Float render differ by a
   /// few of its roundings).
-  public static func defaultTolerance(eightBit: Bool) -> Double {
+  package static func defaultTolerance(eightBit: Bool) -> Double {
     eightBit ? 2 : 1e-6
   }
 
   /// Compares `a` and `b`, which must have the same size and channels.
-  public init(_ a: ReadImage, _ b: ReadImage, tolerance: Double) {
+  package init(_ a: ReadImage, _ b: ReadImage, tolerance: Double) {
     precondition(
       a.width == b.width && a.height == b.height && a.channels == b.channels)
     width = a.width

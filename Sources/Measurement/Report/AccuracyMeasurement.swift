@@ -1,7 +1,10 @@
 import RealModule
 import FastEngine
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// How far a render's depth and normals are from the reference path's, per
 /// pixel and in summary.
@@ -13,30 +16,30 @@ import SceneModel
 /// constants computed from the scene's Double values in twice Double's
 /// precision. What is measured is therefore the error of the intersection,
 /// not a difference in where the camera's rays point.
-public struct AccuracyMeasurement: Sendable {
+package struct AccuracyMeasurement: Sendable {
   /// Pixels where both hit something.
-  public var comparedHits: Int
+  package var comparedHits: Int
   /// max |t − t_ref| / t_ref over compared hits.
-  public var maxRelativeError: Double
+  package var maxRelativeError: Double
   /// The 99th percentile of the same.
-  public var p99RelativeError: Double
+  package var p99RelativeError: Double
   /// The largest relative error of t away from silhouettes: over pixels
   /// whose eight neighbours in the reference all hit, at depths within 10%
   /// of the pixel's and with normals within 10° of its. Near a silhouette
   /// the ray is almost tangent and t is ill-conditioned (a rounding in the
   /// discriminant moves it by √ε), so the plain maximum measures the
   /// problem rather than the method.
-  public var maxInteriorRelativeError: Double
+  package var maxInteriorRelativeError: Double
   /// Pixels where one hit and the other missed.
-  public var disagreements: Int
+  package var disagreements: Int
   /// The largest angle between normals over compared hits, in degrees.
-  public var maxNormalErrorDegrees: Double
+  package var maxNormalErrorDegrees: Double
   /// Relative error of t per pixel, row 0 at the top: NaN where both
   /// missed, +inf where they disagree.
-  public var perPixel: [Double]
+  package var perPixel: [Double]
 
   /// Compares `buffers` (depth and normals) with `reference`.
-  public init<S: RayScalar, R: RayScalar>(
+  package init<S: RayScalar, R: RayScalar>(
     _ buffers: RenderBuffers<S>, against reference: RenderBuffers<R>
   ) {
     precondition(buffers.depth.count == reference.depth.count)
@@ -117,11 +120,11 @@ func angleInDegrees(_ a: Vector3<Double>, _ b: Vector3<Double>) -> Double {
 }
 
 /// Renders for the accuracy report and the stiff-suite tests.
-public enum AccuracyRender {
+package enum AccuracyRender {
   /// Depth and normals of `scene` by the chosen precision and method, and
   /// the median time of `runs` renders after one warm-up (compiling the
   /// scene is not timed).
-  public static func render(
+  package static func render(
     _ scene: Scene, width: Int, height: Int, precision: Precision,
     method: IntersectionMethod, style: ImageStyle = .course, threads: Int = 1,
     runs: Int = 1
@@ -143,7 +146,7 @@ public enum AccuracyRender {
   /// one method 20% slower, and the next compile of it not), so their
   /// ratio is steadier than that of two single medians (`raytrace
   /// report`'s "÷ naive" column).
-  public static func renderMethods(
+  package static func renderMethods(
     _ scene: Scene, width: Int, height: Int, precision: Precision,
     threads: Int = 1, runs: Int = 1, rounds: Int = 1
   ) -> [(
@@ -181,20 +184,20 @@ public enum AccuracyRender {
   ) -> TimedRender {
     let settings = RenderSettings(
       width: width, height: height, outputs: [.depth, .normals], style: style,
-      method: method, precision: precision, threads: threads)
-    switch (precision, method) {
-    case (.float, .naive):
-      return prepared(
-        NaiveKernel<Float>.self, scene, settings, AnyRenderBuffers.float)
-    case (.float, .stable):
-      return prepared(
-        StableKernel<Float>.self, scene, settings, AnyRenderBuffers.float)
-    case (.double, .naive):
-      return prepared(
-        NaiveKernel<Double>.self, scene, settings, AnyRenderBuffers.double)
-    case (.double, .stable):
-      return prepared(
-        StableKernel<Double>.self, scene, settings, AnyRenderBuffers.double)
+      threads: threads)
+    return try! FastOptions(precision: precision, method: method).withKernel(
+      Prepared(scene: scene, settings: settings))
+  }
+
+  /// `prepared` for the kernel `FastOptions.withKernel` chose.
+  private struct Prepared: KernelBody {
+    var scene: Scene
+    var settings: RenderSettings
+
+    func run<Kernel: IntersectionKernel>(_ kernel: Kernel.Type) -> TimedRender
+    {
+      AccuracyRender.prepared(
+        kernel, scene, settings, { AnyRenderBuffers($0) })
     }
   }
 
@@ -214,7 +217,7 @@ public enum AccuracyRender {
 
   /// The reference for renders in `precision`: the same camera rays,
   /// intersected in ReferenceScalar.
-  public static func reference(
+  package static func reference(
     _ scene: Scene, width: Int, height: Int, rays precision: Precision,
     style: ImageStyle = .course, threads: Int = 1
   ) -> RenderBuffers<ReferenceScalar> {
@@ -226,13 +229,13 @@ public enum AccuracyRender {
   /// The same reference intersected in `R`: on x86 the tests and `raytrace
   /// report --reference` run it in DoubleDouble, the reference of platforms
   /// without Float80, as well as in Float80.
-  public static func reference<R: RayScalar>(
+  package static func reference<R: RayScalar>(
     _ scene: Scene, width: Int, height: Int, rays precision: Precision,
     style: ImageStyle = .course, threads: Int = 1, in _: R.Type
   ) -> RenderBuffers<R> {
     let settings = RenderSettings(
       width: width, height: height, outputs: [.depth, .normals], style: style,
-      method: .stable, precision: precision, threads: threads)
+      threads: threads)
     let compiled = CompiledScene<StableKernel<R>>(scene)
     switch precision {
     case .float:
@@ -244,11 +247,22 @@ public enum AccuracyRender {
 }
 
 /// Render buffers of either render precision.
-public enum AnyRenderBuffers: Sendable {
+package enum AnyRenderBuffers: Sendable {
   case float(RenderBuffers<Float>)
   case double(RenderBuffers<Double>)
 
-  public func measured<R: RayScalar>(
+  /// The buffers of a Float or Double render.
+  init<S: RayScalar>(_ buffers: RenderBuffers<S>) {
+    if let buffers = buffers as? RenderBuffers<Float> {
+      self = .float(buffers)
+    } else if let buffers = buffers as? RenderBuffers<Double> {
+      self = .double(buffers)
+    } else {
+      preconditionFailure("the fast engine renders in Float or Double")
+    }
+  }
+
+  package func measured<R: RayScalar>(
     against reference: RenderBuffers<R>
   ) -> AccuracyMeasurement {
     switch self {
@@ -259,7 +273,7 @@ public enum AnyRenderBuffers: Sendable {
 
   /// The unit roundoff's double, ε = 2^−23 or 2^−52: errors are reported
   /// in units of it.
-  public var epsilon: Double {
+  package var epsilon: Double {
     switch self {
     case .float: Double(Float.ulpOfOne)
     case .double: Double.ulpOfOne
@@ -270,13 +284,13 @@ public enum AnyRenderBuffers: Sendable {
 /// How far a supersampled shaded image is from a reference with many more
 /// samples: the error antialiasing leaves, in the displayed (clamped)
 /// colour.
-public struct AntialiasingMeasurement: Sendable {
+package struct AntialiasingMeasurement: Sendable {
   /// Root mean square over pixels and channels, colour in [0, 1].
-  public var rootMeanSquare: Double
+  package var rootMeanSquare: Double
   /// The largest difference of any channel, in 8-bit levels.
-  public var maxLevels: Double
+  package var maxLevels: Double
 
-  public init(_ image: [RGB<Double>], against reference: [RGB<Double>]) {
+  package init(_ image: [RGB<Double>], against reference: [RGB<Double>]) {
     precondition(image.count == reference.count)
     var squares = 0.0
     var largest = 0.0
@@ -292,7 +306,7 @@ public struct AntialiasingMeasurement: Sendable {
 
   /// The shaded image of `scene` with `samples` rays per pixel (stable,
   /// Double) and the median time of `runs` renders after a warm-up.
-  public static func render(
+  package static func render(
     _ scene: Scene, width: Int, height: Int, samples: Int,
     filter: PixelFilter = .box,
     threads: Int, runs: Int

@@ -1,7 +1,10 @@
 import RealModule
 import FastEngine
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Per-pixel error in false colour, with a legend, for `raytrace report
 /// --heatmaps`.
@@ -11,12 +14,12 @@ import SceneModel
 /// Pixels where both missed are black; where one hit and the other missed,
 /// magenta. Below the image a 24-pixel strip shows the scale with a tick and
 /// the exponent (0 to 8) at each decade.
-public enum ErrorHeatmap {
-  public static let decades = 8
+package enum ErrorHeatmap {
+  package static let decades = 8
   static let legendHeight = 24
   static let magenta: (UInt8, UInt8, UInt8) = (255, 0, 255)
 
-  public static func image(
+  package static func image(
     _ measurement: AccuracyMeasurement, width: Int, height: Int, epsilon: Double
   ) -> Image8 {
     let totalHeight = height + legendHeight

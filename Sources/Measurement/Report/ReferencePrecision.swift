@@ -1,17 +1,20 @@
 import FastEngine
 import SceneIO
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The precision the accuracy reference intersects in, as chosen on the
 /// command line (`raytrace report --reference`).
-public enum ReferencePrecision: String, CaseIterable, Sendable {
+package enum ReferencePrecision: String, CaseIterable, Sendable {
   /// Float80 (64-bit significand, IEEE): x86 only.
   case float80
   /// DoubleDouble (106-bit significand, see its bounds): every platform.
   case doubleDouble = "double-double"
 
   /// ReferenceScalar's: Float80 where the platform has it.
-  public static var platformDefault: ReferencePrecision {
+  package static var platformDefault: ReferencePrecision {
     #if (arch(i386) || arch(x86_64)) && !os(Windows) && !os(Android)
       .float80
     #else
@@ -20,7 +23,7 @@ public enum ReferencePrecision: String, CaseIterable, Sendable {
   }
 
   /// Whether this platform has the type.
-  public var isAvailable: Bool {
+  package var isAvailable: Bool {
     self == .doubleDouble || Self.platformDefault == .float80
   }
 }

@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Reads uncompressed Windows bitmaps, the course's texture files: 24-bit
 /// (BGR) and 32-bit (BGRA or BGRX, alpha dropped) pixels, rows stored
@@ -8,17 +11,17 @@ import SceneModel
 /// that name the standard 32-bit layout. Anything else (palettes, RLE,
 /// 16-bit, OS/2 headers, JPEG or PNG inside) is refused by name, and a
 /// file shorter than its header says is an error: nothing traps.
-public enum BMPReader {
-  public struct Failure: Error, Equatable, CustomStringConvertible {
-    public var description: String
+package enum BMPReader {
+  package struct Failure: Error, Equatable, CustomStringConvertible {
+    package var description: String
   }
 
   /// Larger images are refused rather than allocated: a texture of 2¹⁴
   /// texels on a side is already 800 MB of RGB.
-  public static let maximumSide = 1 << 14
+  package static let maximumSide = 1 << 14
 
   /// The image with its rows from the top, in RGB.
-  public static func decode(_ bytes: [UInt8]) throws(Failure) -> Image8 {
+  package static func decode(_ bytes: [UInt8]) throws(Failure) -> Image8 {
     guard bytes.count >= 2, bytes[0] == 0x42, bytes[1] == 0x4D else {
       throw Failure(description: "not a BMP file (it does not start with 'BM')")
     }

@@ -1,17 +1,20 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// An image read back for comparison (`raytrace compare`): 8-bit RGB
 /// pixels, or raw values (1 or 3 channels) as the float formats hold them.
-public struct ReadImage: Sendable, Equatable {
-  public var width: Int
-  public var height: Int
-  public var channels: Int
+package struct ReadImage: Sendable, Equatable {
+  package var width: Int
+  package var height: Int
+  package var channels: Int
   /// Row 0 at the top, `channels` values a pixel: 0…255 for 8-bit images.
-  public var values: [Double]
+  package var values: [Double]
   /// PNG, PPM, BMP (levels) rather than PFM, NPY (raw values).
-  public var isEightBit: Bool
+  package var isEightBit: Bool
 
-  public init(
+  package init(
     width: Int, height: Int, channels: Int, values: [Double],
     isEightBit: Bool
   ) {
@@ -23,28 +26,28 @@ public struct ReadImage: Sendable, Equatable {
     self.isEightBit = isEightBit
   }
 
-  public init(_ image: Image8) {
+  package init(_ image: Image8) {
     self.init(
       width: image.width, height: image.height, channels: 3,
       values: image.bytes.map(Double.init), isEightBit: true)
   }
 
   /// The value of `channel` at (`column`, `row`).
-  public subscript(column: Int, row: Int, channel: Int) -> Double {
+  package subscript(column: Int, row: Int, channel: Int) -> Double {
     values[(row * width + column) * channels + channel]
   }
 }
 
 /// Reads the image formats the project writes (PNG, PPM, PFM, NPY) and BMP,
 /// recognised by their content.
-public enum ImageFileReader {
-  public struct Failure: Error, Equatable, CustomStringConvertible {
-    public var description: String
+package enum ImageFileReader {
+  package struct Failure: Error, Equatable, CustomStringConvertible {
+    package var description: String
     init(_ description: String) { self.description = description }
   }
 
   /// The largest side accepted, as for the render's own images.
-  public static let maximumSide = 1 << 15
+  package static let maximumSide = 1 << 15
 
   /// Refuses an image whose values (a Double each) would not fit in what
   /// the process may use, before they are allocated.
@@ -58,7 +61,7 @@ public enum ImageFileReader {
   }
 
   /// The image in the file at `path` (a regular file, read whole).
-  public static func read(contentsOf path: String) throws(Failure)
+  package static func read(contentsOf path: String) throws(Failure)
     -> ReadImage
   {
     let bytes: [UInt8]
@@ -66,7 +69,7 @@ public enum ImageFileReader {
     return try read(bytes)
   }
 
-  public static func read(_ bytes: [UInt8]) throws(Failure) -> ReadImage {
+  package static func read(_ bytes: [UInt8]) throws(Failure) -> ReadImage {
     func starts(with prefix: [UInt8]) -> Bool {
       bytes.count >= prefix.count && Array(bytes.prefix(prefix.count)) == prefix
     }

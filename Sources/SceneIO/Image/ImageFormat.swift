@@ -1,7 +1,10 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The file formats an output can take, chosen by the path's extension.
-public enum ImageFormat: String, CaseIterable, Sendable {
+package enum ImageFormat: String, CaseIterable, Sendable {
   /// 8-bit RGB, zlib-compressed.
   case png
   /// Binary P6, 8-bit RGB.
@@ -12,7 +15,7 @@ public enum ImageFormat: String, CaseIterable, Sendable {
   case npy
 
   /// Nil when the extension (case ignored) is none of the above.
-  public init?(path: String) {
+  package init?(path: String) {
     guard let dot = path.lastIndex(of: "."),
       !path[path.index(after: dot)...].contains("/")
     else { return nil }
@@ -20,17 +23,17 @@ public enum ImageFormat: String, CaseIterable, Sendable {
   }
 
   /// PNG and PPM hold mapped 8-bit pixels; PFM and NPY the raw values.
-  public var isEightBit: Bool { self == .png || self == .ppm }
+  package var isEightBit: Bool { self == .png || self == .ppm }
 }
 
 /// Raw per-pixel values, `channels` per pixel, row 0 at the top.
-public struct RawImage<Scalar: RayScalar>: Sendable {
-  public let width: Int
-  public let height: Int
-  public let channels: Int
-  public var values: [Scalar]
+package struct RawImage<Scalar: RayScalar>: Sendable {
+  package let width: Int
+  package let height: Int
+  package let channels: Int
+  package var values: [Scalar]
 
-  public init(width: Int, height: Int, channels: Int, values: [Scalar]) {
+  package init(width: Int, height: Int, channels: Int, values: [Scalar]) {
     precondition(values.count == width * height * channels)
     self.width = width
     self.height = height

@@ -1,11 +1,14 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// NumPy's `.npy` format, version 1.0: magic, a header dictionary padded so
 /// the data starts on a 64-byte boundary, then little-endian values in C
 /// order. Shape H×W for one channel, H×W×C otherwise; row 0 at the top.
-public enum NPYEncoder {
+package enum NPYEncoder {
   /// `<f4` for Float, `<f8` for Double; other types are converted to Double.
-  public static func encode<S: RayScalar>(_ image: RawImage<S>) -> [UInt8] {
+  package static func encode<S: RayScalar>(_ image: RawImage<S>) -> [UInt8] {
     let isFloat = S.self == Float.self
     let shape =
       image.channels == 1

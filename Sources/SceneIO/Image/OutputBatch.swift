@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The files one run writes, replaced all together or not at all.
 ///
@@ -14,18 +17,18 @@ import SceneModel
 /// time, so another process can see some targets replaced and others not
 /// for the microseconds between the renames, and a crash of the machine in
 /// that window can leave a mixed set.
-public final class OutputBatch {
+package final class OutputBatch {
   /// The system calls a batch makes to replace its targets, replaceable in
   /// tests to make one fail.
-  public struct FileOperations: Sendable {
-    public var rename: @Sendable (String, String) -> Int32
-    public var link: @Sendable (String, String) -> Int32
+  package struct FileOperations: Sendable {
+    package var rename: @Sendable (String, String) -> Int32
+    package var link: @Sendable (String, String) -> Int32
 
-    public static let system = FileOperations(
+    package static let system = FileOperations(
       rename: { Platform.renameFile($0, $1) },
       link: { Platform.linkFile($0, $1) })
 
-    public init(
+    package init(
       rename: @escaping @Sendable (String, String) -> Int32,
       link: @escaping @Sendable (String, String) -> Int32
     ) {
@@ -34,7 +37,7 @@ public final class OutputBatch {
     }
   }
 
-  public let paths: [String]
+  package let paths: [String]
   /// Per path, its temporary file, or nil for a target written in place
   /// (a FIFO or a character device, which is never replaced).
   private var temporaries: [String?] = []
@@ -47,7 +50,7 @@ public final class OutputBatch {
   /// - Throws: `OutputError` naming the first path that cannot be written
   ///   (a folder, a missing or read-only folder, too many outputs), after
   ///   removing the temporaries already made.
-  public init(
+  package init(
     paths: [String], operations: FileOperations = .system
   ) throws(OutputError) {
     PendingFiles.installHandlers()
@@ -160,7 +163,7 @@ public final class OutputBatch {
   deinit { abandon() }
 
   /// Removes every temporary; the targets are left as they were.
-  public func abandon() {
+  package func abandon() {
     guard !finished else { return }
     finished = true
     for (temporary, descriptor) in zip(temporaries, descriptors) {
@@ -172,7 +175,7 @@ public final class OutputBatch {
   }
 
   /// Writes `contents[i]` to `paths[i]` for every i, all or none.
-  public func commit(_ contents: [[UInt8]]) throws(OutputError) {
+  package func commit(_ contents: [[UInt8]]) throws(OutputError) {
     precondition(contents.count == paths.count && !finished)
     for index in paths.indices {
       do throws(OutputError) {

@@ -1,17 +1,20 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Portable float map: `Pf` (one channel) or `PF` (three), the size, then a
 /// negative scale meaning little-endian, then 32-bit floats with the bottom
 /// row first, as the format defines.
-public enum PFMEncoder {
-  public static func encode(_ image: RawImage<Float>) -> [UInt8] {
+package enum PFMEncoder {
+  package static func encode(_ image: RawImage<Float>) -> [UInt8] {
     encode(converting: image)
   }
 
   /// The file of `image`'s values, each rounded to Float once as it is
   /// written (the same bytes as converting the image first, without the
   /// converted copy).
-  public static func encode<S: RayScalar>(converting image: RawImage<S>)
+  package static func encode<S: RayScalar>(converting image: RawImage<S>)
     -> [UInt8]
   {
     precondition(image.channels == 1 || image.channels == 3)

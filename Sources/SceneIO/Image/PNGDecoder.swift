@@ -1,16 +1,19 @@
 import CZlib
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Reads back the PNG files this project writes, and any other
 /// non-interlaced 8-bit greyscale, RGB or RGBA PNG, checking every chunk's
 /// CRC: the tests' and the report's way to look at an image.
-public enum PNGDecoder {
-  public struct Failure: Error, Equatable, CustomStringConvertible {
-    public var description: String
+package enum PNGDecoder {
+  package struct Failure: Error, Equatable, CustomStringConvertible {
+    package var description: String
   }
 
   /// The image as RGB; alpha is dropped and grey is spread to three channels.
-  public static func decode(_ bytes: [UInt8]) throws(Failure) -> Image8 {
+  package static func decode(_ bytes: [UInt8]) throws(Failure) -> Image8 {
     guard bytes.count >= 8, Array(bytes[0..<8]) == PNGEncoder.signature else {
       throw Failure(description: "not a PNG file (bad signature)")
     }

@@ -1,5 +1,8 @@
 import CZlib
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 extension PNGEncoder {
   /// A PNG's image data cut into pieces of whole rows that compress
@@ -19,22 +22,22 @@ extension PNGEncoder {
   /// 256 KiB the course scene's images came out 0.4–1.6 % smaller all the
   /// same, each piece's Huffman codes fitting its own rows
   /// (docs/PERFORMANCE.md, "Writing images").
-  public struct Pieces: Sendable {
-    public let rows: PixelRows
-    public let options: PNGOptions
+  package struct Pieces: Sendable {
+    package let rows: PixelRows
+    package let options: PNGOptions
     /// Rows per piece; the last piece may have fewer.
-    public let rowsPerPiece: Int
+    package let rowsPerPiece: Int
 
     /// About this many filtered bytes a piece: large enough that the lost
     /// matches at its start do not matter, small enough that an image of
     /// a few hundred rows gives both threads several pieces.
-    public static let targetPieceBytes = 256 * 1024
+    package static let targetPieceBytes = 256 * 1024
 
     /// About this many filtered bytes go to zlib at a time (whole rows, at
     /// least one).
     static let batchBytes = 32 * 1024
 
-    public init(
+    package init(
       _ rows: PixelRows, options: PNGOptions,
       rowsPerPiece: Int? = nil
     ) {
@@ -45,13 +48,13 @@ extension PNGEncoder {
     }
 
     /// At least one, so that an image without rows still gets a stream.
-    public var count: Int {
+    package var count: Int {
       Swift.max(1, (rows.height + rowsPerPiece - 1) / rowsPerPiece)
     }
 
     /// One piece's deflate bytes, and the Adler-32 and length of the
     /// filtered bytes it holds.
-    public struct Compressed: Sendable {
+    package struct Compressed: Sendable {
       var bytes: [UInt8]
       var adler: UInt
       var length: Int
@@ -59,7 +62,7 @@ extension PNGEncoder {
 
     /// Filters and compresses the rows of piece `index`; the row before
     /// its first is read again for the filters that look up.
-    public func compress(_ index: Int) -> Compressed {
+    package func compress(_ index: Int) -> Compressed {
       precondition(index >= 0 && index < count)
       let first = index * rowsPerPiece
       let end = Swift.min(rows.height, first + rowsPerPiece)
@@ -121,7 +124,7 @@ extension PNGEncoder {
 
     /// The PNG file: signature, header, the pieces (in order) as one IDAT,
     /// end.
-    public func assemble(_ pieces: [Compressed]) -> [UInt8] {
+    package func assemble(_ pieces: [Compressed]) -> [UInt8] {
       precondition(pieces.count == count)
       var header: [UInt8] = []
       header.appendBigEndian(UInt32(rows.width))

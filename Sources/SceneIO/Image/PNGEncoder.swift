@@ -1,8 +1,11 @@
 import CZlib
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// How PNG rows are filtered before compression.
-public enum PNGFilter: String, CaseIterable, Sendable {
+package enum PNGFilter: String, CaseIterable, Sendable {
   /// Raw bytes: fastest to filter, compresses worst.
   case none
   /// Difference from the pixel to the left.
@@ -17,12 +20,12 @@ public enum PNGFilter: String, CaseIterable, Sendable {
 }
 
 /// The size-against-speed choices for PNG files.
-public struct PNGOptions: Hashable, Sendable {
+package struct PNGOptions: Hashable, Sendable {
   /// zlib level, 0 (store) to 9 (smallest).
-  public var compressionLevel: Int32
-  public var filter: PNGFilter
+  package var compressionLevel: Int32
+  package var filter: PNGFilter
 
-  public init(compressionLevel: Int32, filter: PNGFilter) {
+  package init(compressionLevel: Int32, filter: PNGFilter) {
     self.compressionLevel = compressionLevel
     self.filter = filter
   }
@@ -31,7 +34,7 @@ public struct PNGOptions: Hashable, Sendable {
   /// table): ray-cast images are large flat areas and smooth gradients, which
   /// `up` plus a fast zlib level compresses nearly as well as level 9 with
   /// adaptive filtering, several times faster.
-  public static let `default` = PNGOptions(compressionLevel: 1, filter: .up)
+  package static let `default` = PNGOptions(compressionLevel: 1, filter: .up)
 }
 
 /// Writes 8-bit RGB PNG files: signature, IHDR, one IDAT, IEND, each chunk
@@ -42,16 +45,16 @@ public struct PNGOptions: Hashable, Sendable {
 /// joined into the one zlib stream PNG holds (`PNGEncoder.Pieces`), so that
 /// the pieces of one image, or of several, compress on several threads at
 /// once. `encode` compresses them one after another.
-public enum PNGEncoder {
+package enum PNGEncoder {
   static let signature: [UInt8] = [137, 80, 78, 71, 13, 10, 26, 10]
 
-  public static func encode(
+  package static func encode(
     _ image: Image8, options: PNGOptions = .default
   ) -> [UInt8] {
     encode(PixelRows(image), options: options)
   }
 
-  public static func encode(
+  package static func encode(
     _ rows: PixelRows, options: PNGOptions = .default
   ) -> [UInt8] {
     let pieces = Pieces(rows, options: options)

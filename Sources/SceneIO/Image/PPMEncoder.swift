@@ -1,8 +1,11 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Binary PPM (P6): a text header, then RGB bytes row by row from the top.
-public enum PPMEncoder {
-  public static func encode(_ image: Image8) -> [UInt8] {
+package enum PPMEncoder {
+  package static func encode(_ image: Image8) -> [UInt8] {
     var bytes = Array("P6\n\(image.width) \(image.height)\n255\n".utf8)
     bytes.append(contentsOf: image.bytes)
     return bytes

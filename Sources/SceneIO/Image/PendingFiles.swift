@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// What a signal handler must undo for the outputs in flight, in fixed C
 /// storage that it can read without allocating or locking: temporary files

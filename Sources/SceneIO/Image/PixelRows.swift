@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// An 8-bit RGB image handed out a row at a time, row 0 at the top: what
 /// the encoders read, so that an image computed from a render's buffers
@@ -6,12 +9,12 @@ import SceneModel
 ///
 /// `fill(row, bytes)` writes the row's 3·width bytes. Rows may be asked
 /// for in any order, more than once, and from several threads at once.
-public struct PixelRows: Sendable {
-  public let width: Int
-  public let height: Int
+package struct PixelRows: Sendable {
+  package let width: Int
+  package let height: Int
   private let fill: @Sendable (Int, UnsafeMutableBufferPointer<UInt8>) -> Void
 
-  public init(
+  package init(
     width: Int, height: Int,
     fill: @escaping @Sendable (Int, UnsafeMutableBufferPointer<UInt8>) -> Void
   ) {
@@ -21,7 +24,7 @@ public struct PixelRows: Sendable {
   }
 
   /// The rows of an image held as bytes (shared, not copied).
-  public init(_ image: Image8) {
+  package init(_ image: Image8) {
     let bytes = image.bytes
     let stride = 3 * image.width
     self.init(width: image.width, height: image.height) { row, out in
@@ -33,16 +36,16 @@ public struct PixelRows: Sendable {
   }
 
   /// The bytes per row: three per pixel.
-  public var stride: Int { 3 * width }
+  package var stride: Int { 3 * width }
 
   /// Writes `row` into `bytes`, which must hold `stride` bytes.
-  public func fill(row: Int, into bytes: UnsafeMutableBufferPointer<UInt8>) {
+  package func fill(row: Int, into bytes: UnsafeMutableBufferPointer<UInt8>) {
     precondition(row >= 0 && row < height && bytes.count >= stride)
     fill(row, bytes)
   }
 
   /// Every row, as one image.
-  public var image: Image8 {
+  package var image: Image8 {
     var bytes = [UInt8](repeating: 0, count: height * stride)
     bytes.withUnsafeMutableBufferPointer { bytes in
       for row in 0..<height {

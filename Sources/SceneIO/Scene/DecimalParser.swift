@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Decimal text to Double, fast for the short numbers scene files hold.
 ///

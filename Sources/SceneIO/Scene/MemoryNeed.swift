@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Files whose contents are estimated before they are read: a mesh or a
 /// texture that could not fit in what the process may use is refused in

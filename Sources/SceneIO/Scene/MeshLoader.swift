@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Turns an OBJ file into a scene object, as both scene formats name it
 /// (`TriangleMesh { obj_file PATH }` in text, `objFile NAME` in a plist).

@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// A triangulated OBJ mesh, in the file's Double precision.
 ///
@@ -6,24 +9,24 @@ import SceneModel
 /// Int32 indices a triangle per attribute, 12 bytes where a triangle of
 /// `OBJTriangle`s took 48, and the scene's mesh shares them rather than
 /// copying them. `triangles` gives them as `OBJTriangle`s.
-public struct OBJMesh: Sendable {
+package struct OBJMesh: Sendable {
   /// The `v` lines in order; x, y and z only.
-  public var vertices: [Vector3<Double>]
+  package var vertices: [Vector3<Double>]
   /// The `vn` lines in order, as written (not normalised; may be zero).
-  public var normals: [Vector3<Double>]
+  package var normals: [Vector3<Double>]
   /// The `vt` lines in order, (u, v); a missing v is 0, w is dropped.
-  public var textureCoordinates: [TextureCoordinate<Double>]
+  package var textureCoordinates: [TextureCoordinate<Double>]
   /// Three per triangle, into `vertices`: the faces, fanned into
   /// triangles, in file order.
-  public private(set) var vertexIndices: [Int32] = []
+  package private(set) var vertexIndices: [Int32] = []
   /// Three per triangle into `normals`, −1s for a face without; empty
   /// until some face gives normals.
-  public private(set) var normalIndices: [Int32] = []
+  package private(set) var normalIndices: [Int32] = []
   /// Three per triangle into `textureCoordinates`, −1s for a face without;
   /// empty until some face gives texture coordinates.
-  public private(set) var textureIndices: [Int32] = []
+  package private(set) var textureIndices: [Int32] = []
 
-  public init(
+  package init(
     vertices: [Vector3<Double>] = [], normals: [Vector3<Double>] = [],
     textureCoordinates: [TextureCoordinate<Double>] = [],
     triangles: [OBJTriangle] = []
@@ -35,11 +38,11 @@ public struct OBJMesh: Sendable {
   }
 
   /// The count of triangles.
-  public var triangleCount: Int { vertexIndices.count / 3 }
+  package var triangleCount: Int { vertexIndices.count / 3 }
 
   /// The faces, fanned into triangles, in file order, one value each (made
   /// on each read: for tests and small meshes).
-  public var triangles: [OBJTriangle] {
+  package var triangles: [OBJTriangle] {
     get { (0..<triangleCount).map(face) }
     set {
       vertexIndices = []
@@ -50,7 +53,7 @@ public struct OBJMesh: Sendable {
   }
 
   /// Triangle `index` as an `OBJTriangle`.
-  public func face(_ index: Int) -> OBJTriangle {
+  package func face(_ index: Int) -> OBJTriangle {
     func triple(_ indices: [Int32]) -> SIMD3<Int32>? {
       guard !indices.isEmpty, indices[3 * index] >= 0 else { return nil }
       return SIMD3(
@@ -134,7 +137,7 @@ public struct OBJMesh: Sendable {
   }
 
   /// Whether any face gives texture coordinates.
-  public var hasTextureCoordinates: Bool {
+  package var hasTextureCoordinates: Bool {
     stride(from: 0, to: textureIndices.count, by: 3).contains {
       textureIndices[$0] >= 0
     }
@@ -145,7 +148,7 @@ public struct OBJMesh: Sendable {
   /// coincident positions are not merged. Faces whose cross product is zero
   /// or not finite add nothing; a vertex whose sum is zero gets the zero
   /// normal, for which a hit falls back to the face's own normal.
-  public func smoothed(_ rule: MeshNormals = .unitMean) -> OBJMesh {
+  package func smoothed(_ rule: MeshNormals = .unitMean) -> OBJMesh {
     guard let normals = smoothedNormals(rule) else { return self }
     var result = self
     result.normals = normals
@@ -185,7 +188,7 @@ public struct OBJMesh: Sendable {
   /// index. Faces that give normals already are unchanged.
   ///
   /// - Returns: nil when some such b is not a valid normal index.
-  public func readingTextureIndicesAsNormals() -> OBJMesh? {
+  package func readingTextureIndicesAsNormals() -> OBJMesh? {
     guard !normals.isEmpty, !textureIndices.isEmpty else { return self }
     var result = self
     let limit = Int32(truncatingIfNeeded: normals.count)
@@ -217,7 +220,7 @@ public struct OBJMesh: Sendable {
   /// texture coordinates where the face gave them. Degenerate triangles (a
   /// repeated vertex, a zero-area face) are kept: they are never hit, and
   /// dropping them is the compiled scene's choice.
-  public func makeTriangles<S: RayScalar>(
+  package func makeTriangles<S: RayScalar>(
     materialIndex: Int, as _: S.Type = S.self
   ) -> [Triangle<S>] {
     (0..<triangleCount).map {
@@ -229,7 +232,7 @@ public struct OBJMesh: Sendable {
   /// it, for callers that store each one straight into their own array.
   ///
   /// - Precondition: `0 <= index < triangleCount`.
-  public func triangle<S: RayScalar>(
+  package func triangle<S: RayScalar>(
     at index: Int, materialIndex: Int, as _: S.Type = S.self
   ) -> Triangle<S> {
     let face = face(index)
@@ -256,14 +259,14 @@ public struct OBJMesh: Sendable {
 /// One triangle of an OBJ mesh: 0-based indices into `OBJMesh.vertices`
 /// and, when its face gave them, into `OBJMesh.normals` and
 /// `OBJMesh.textureCoordinates`.
-public struct OBJTriangle: Hashable, Sendable {
-  public var vertexIndices: SIMD3<Int32>
+package struct OBJTriangle: Hashable, Sendable {
+  package var vertexIndices: SIMD3<Int32>
   /// −1s when the face gave no normals; read through `normalIndices`.
   @usableFromInline var normalStorage: SIMD3<Int32>
   /// −1s when the face gave no texture coordinates.
   @usableFromInline var textureStorage: SIMD3<Int32>
 
-  public init(
+  package init(
     vertexIndices: SIMD3<Int32>, normalIndices: SIMD3<Int32>? = nil,
     textureIndices: SIMD3<Int32>? = nil
   ) {
@@ -274,14 +277,14 @@ public struct OBJTriangle: Hashable, Sendable {
 
   /// Indices into `OBJMesh.normals`, or nil for a face without normals.
   @inlinable
-  public var normalIndices: SIMD3<Int32>? {
+  package var normalIndices: SIMD3<Int32>? {
     get { normalStorage.x < 0 ? nil : normalStorage }
     set { normalStorage = newValue ?? SIMD3(repeating: -1) }
   }
 
   /// Indices into `OBJMesh.textureCoordinates`, or nil.
   @inlinable
-  public var textureIndices: SIMD3<Int32>? {
+  package var textureIndices: SIMD3<Int32>? {
     get { textureStorage.x < 0 ? nil : textureStorage }
     set { textureStorage = newValue ?? SIMD3(repeating: -1) }
   }
@@ -290,14 +293,14 @@ public struct OBJTriangle: Hashable, Sendable {
 extension OBJMesh: Hashable {
   /// The same elements and the same faces, however the indices are held
   /// (−1s or none for faces without normals).
-  public static func == (lhs: OBJMesh, rhs: OBJMesh) -> Bool {
+  package static func == (lhs: OBJMesh, rhs: OBJMesh) -> Bool {
     lhs.vertices == rhs.vertices && lhs.normals == rhs.normals
       && lhs.textureCoordinates == rhs.textureCoordinates
       && lhs.vertexIndices == rhs.vertexIndices
       && lhs.triangles == rhs.triangles
   }
 
-  public func hash(into hasher: inout Hasher) {
+  package func hash(into hasher: inout Hasher) {
     hasher.combine(vertices)
     hasher.combine(normals)
     hasher.combine(textureCoordinates)

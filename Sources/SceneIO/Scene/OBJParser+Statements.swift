@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The statements of an OBJ file: vertices, normals, texture coordinates
 /// and faces.

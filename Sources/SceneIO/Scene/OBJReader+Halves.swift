@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// A large OBJ file read on two threads: the first half as ever, the second
 /// from a line break near the middle, speculatively, and joined where the

@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Reads the polygon meshes of Wavefront OBJ files, as `TriangleMesh
 /// { obj_file … }` names them:
@@ -41,11 +44,11 @@ import SceneModel
 ///
 /// - Complexity: one pass over the bytes; numbers are converted by
 ///   `DecimalParser`'s fast path. See OBJReaderTests for the measured rate.
-public enum OBJReader {
+package enum OBJReader {
   /// Reads and parses the file at `path`; `path` names the file in
   /// messages. A file that cannot be read is an error with line 0. Every
   /// number must be held by `precision` (see `Precision.rangeProblem`).
-  public static func read(
+  package static func read(
     contentsOf path: String, precision: Precision = .double
   ) throws(SceneError) -> OBJMesh {
     let bytes: [UInt8]
@@ -60,7 +63,7 @@ public enum OBJReader {
   }
 
   /// Parses `text`; `file` names it in messages.
-  public static func parse(
+  package static func parse(
     _ text: String, file: String, precision: Precision = .double
   ) throws(SceneError) -> OBJMesh {
     try parse(bytes: Array(text.utf8), file: file, precision: precision)

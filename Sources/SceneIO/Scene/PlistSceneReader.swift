@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 #if canImport(FoundationEssentials)
   import FoundationEssentials
@@ -34,10 +37,10 @@ import SceneModel
 /// limit: non-finite numbers, nesting, zero vectors, negative colours.
 /// Every problem is one `SceneError` naming the key path
 /// (`Materials[2].diffuseColor: expected 3 numbers, found "0.2 0.8"`).
-public enum PlistSceneReader {
+package enum PlistSceneReader {
   /// Parses the property list in `bytes`; `file` names it in messages and
   /// locates the meshes and textures it names.
-  public static func parse(
+  package static func parse(
     bytes: [UInt8], file: String, options: SceneOptions = .init(style: .course)
   ) throws(SceneError) -> Scene {
     let root = try PropertyList.decode(

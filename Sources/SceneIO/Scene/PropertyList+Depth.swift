@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The depth check made before a property list is decoded: Foundation's
 /// decoders recurse once per level of nesting, so a file of a few

@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The scan of an XML property list made before it is decoded: its nesting
 /// as the decoder will read it, and the first place where it is not a

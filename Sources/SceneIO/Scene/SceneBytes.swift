@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The bytes a scene is parsed from, immutable once read, so the threads
 /// of a parse share them.

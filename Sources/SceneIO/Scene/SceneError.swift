@@ -1,16 +1,19 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// A problem with a scene file, reported as one line in the form compilers
 /// use, `FILE:LINE:COLUMN: error: message`, so that editors can jump to it.
-public struct SceneError: Error, Equatable, CustomStringConvertible, Sendable {
-  public var file: String
+package struct SceneError: Error, Equatable, CustomStringConvertible, Sendable {
+  package var file: String
   /// 1-based line; 0 when the problem is with the file as a whole.
-  public var line: Int
+  package var line: Int
   /// 1-based column in bytes (the format is ASCII).
-  public var column: Int
-  public var message: String
+  package var column: Int
+  package var message: String
 
-  public init(file: String, line: Int, column: Int, message: String) {
+  package init(file: String, line: Int, column: Int, message: String) {
     self.file = file
     self.line = line
     self.column = column
@@ -20,7 +23,7 @@ public struct SceneError: Error, Equatable, CustomStringConvertible, Sendable {
   /// `FILE:LINE:COLUMN: error: …`; without a column (a property list's
   /// decoder names only lines) `FILE:LINE: error: …`; about the file as a
   /// whole, or a property list's key path, `FILE: error: …`.
-  public var description: String {
+  package var description: String {
     if line > 0 && column > 0 {
       return "\(SceneParser.escaped(file)):\(line):\(column): error: \(message)"
     }

@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 // Reading scene, mesh and texture files whole: regular files only, up to
 // a size limit, with the system's reason on failure.

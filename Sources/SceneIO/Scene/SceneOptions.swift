@@ -1,21 +1,24 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// What reading a scene depends on beyond its file: the image style's
 /// reading of meshes, and the precision the scene will be rendered in.
-public struct SceneOptions: Sendable {
+package struct SceneOptions: Sendable {
   /// How a mesh without `vn` lines gets its vertex normals.
-  public var meshNormals: MeshNormals
+  package var meshNormals: MeshNormals
   /// The render's precision: every number of the scene (and of its
   /// meshes), and every Transform's matrix, must be finite, and zero or
   /// normal, in it; the readers refuse the first that is not, where it is
   /// written (see `Precision.rangeProblem`). Double by default, which
   /// refuses only what Double cannot hold either.
-  public var precision: Precision
+  package var precision: Precision
   /// Kinds of object beyond the readers' own, read by name (the course's
   /// `CourseShapes.all`, passed in by the command line).
-  public var shapes: [ShapeKind] = []
+  package var shapes: [ShapeKind] = []
 
-  public init(
+  package init(
     meshNormals: MeshNormals, precision: Precision = .double,
     shapes: [ShapeKind] = []
   ) {
@@ -25,7 +28,7 @@ public struct SceneOptions: Sendable {
   }
 
   /// The reading each image style's images were made with.
-  public init(
+  package init(
     style: ImageStyle, precision: Precision = .double,
     shapes: [ShapeKind] = []
   ) {
@@ -39,7 +42,7 @@ public struct SceneOptions: Sendable {
 }
 
 /// The vertex normals of a smoothed mesh (one without `vn` lines).
-public enum MeshNormals: String, Hashable, Sendable {
+package enum MeshNormals: String, Hashable, Sendable {
   /// The course's loader: the sum of the unnormalised face cross products
   /// around the vertex, normalised, so large faces weigh more.
   case areaWeighted

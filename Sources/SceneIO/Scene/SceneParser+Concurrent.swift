@@ -1,5 +1,8 @@
 import Dispatch
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// A large group read on two threads: the second starts at a line break
 /// near the middle of the file, and its objects are kept only where the

@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Fields, values and the counts blocks declare.
 extension SceneParser {

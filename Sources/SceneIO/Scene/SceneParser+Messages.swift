@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Errors at tokens, quoted safely, and the nearest keyword to suggest.
 extension SceneParser {
@@ -10,7 +13,7 @@ extension SceneParser {
   }
 
   /// `raw` with control characters and line separators escaped.
-  public static func escaped(_ raw: String) -> String {
+  package static func escaped(_ raw: String) -> String {
     guard raw.unicodeScalars.contains(where: needsEscape) else { return raw }
     var escaped = String.UnicodeScalarView()
     for scalar in raw.unicodeScalars {

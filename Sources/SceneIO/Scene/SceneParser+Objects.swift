@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The objects of a group: spheres, planes, triangles, meshes, transforms
 /// and nested groups, each checked as it is read.

@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Kinds of object the readers learn from their caller
 /// (`SceneOptions.shapes`, docs/ADDING-A-SHAPE.md), in the text format.

@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// What a Transform makes of its object, checked against the render's
 /// precision: its matrix and inverse, and the moved geometry. Shared by

@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Reads the course's scene format:
 ///
@@ -18,15 +21,15 @@ import SceneModel
 /// Only the camera and the group are required. Fields inside a block may come
 /// in any order, each once. Every problem is a `SceneError` at the offending
 /// token; nothing traps, whatever the input.
-public struct SceneParser {
+package struct SceneParser {
   /// Deeper nesting than this is refused rather than risking the stack.
-  public static let maximumGroupDepth = 200
+  package static let maximumGroupDepth = 200
 
   /// Longer words are refused at their position: no keyword or number
   /// needs a thousandth of it, and quoting a 50 MB word in a message, or
   /// comparing it with every keyword for a suggestion, would cost more than
   /// the whole file.
-  public static let maximumWordLength = 4096
+  package static let maximumWordLength = 4096
 
   /// The shortest object, `Group{numObjects 0}`: a file of n bytes holds at
   /// most n / 19 objects, however they nest.
@@ -75,7 +78,7 @@ public struct SceneParser {
   )
 
   /// Parses `text`; `file` names it in messages.
-  public static func parse(
+  package static func parse(
     _ text: String, file: String, options: SceneOptions = .init(style: .course)
   ) throws(SceneError) -> Scene {
     try parse(bytes: Array(text.utf8), file: file, options: options)
@@ -107,7 +110,7 @@ public struct SceneParser {
 
   /// Reads and parses the text scene file at `path` (see `SceneReader`
   /// for either format).
-  public static func parse(
+  package static func parse(
     contentsOf path: String, options: SceneOptions = .init(style: .course)
   ) throws(SceneError) -> Scene {
     let bytes: SceneBytes

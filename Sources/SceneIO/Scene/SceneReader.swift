@@ -1,12 +1,15 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Reads a scene file in either format, recognised by its content: a
 /// property list (XML or binary, the Swift course's files; see
 /// `PlistSceneReader`) or the text format of the original assignment (see
 /// `SceneParser`), whatever the file's name.
-public enum SceneReader {
+package enum SceneReader {
   /// The scene in the file at `path`; meshes read as `options` says.
-  public static func read(
+  package static func read(
     contentsOf path: String, options: SceneOptions
   ) throws(SceneError) -> Scene {
     let bytes: SceneBytes
@@ -27,7 +30,7 @@ public enum SceneReader {
 
   /// The scene in `bytes`, named `file` in messages (and locating its
   /// meshes and textures).
-  public static func parse(
+  package static func parse(
     bytes: [UInt8], file: String, options: SceneOptions = .init(style: .course)
   ) throws(SceneError) -> Scene {
     let recognised = bytes.withUnsafeBufferPointer {

@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// The bytes a UTF-8 file may start with to say it is UTF-8.
 let utf8ByteOrderMark: [UInt8] = [0xEF, 0xBB, 0xBF]

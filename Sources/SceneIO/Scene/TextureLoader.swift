@@ -1,15 +1,18 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// Reads the textures a scene's materials name, for a shaded render: the
 /// only render that needs them, so depth and normals images never open a
 /// texture file.
-public enum TextureLoader {
+package enum TextureLoader {
   /// Per material of `scene`, its texture, or nil for an untextured one;
   /// each file is read once however many materials name it.
   ///
   /// - Throws: `SceneError` naming the file (line 0) when a texture cannot
   ///   be read or is not a BMP this renderer reads.
-  public static func load(for scene: Scene) throws(SceneError) -> [Texture?] {
+  package static func load(for scene: Scene) throws(SceneError) -> [Texture?] {
     var cache: [String: Texture] = [:]
     var textures: [Texture?] = []
     for material in scene.materials {
@@ -29,7 +32,7 @@ public enum TextureLoader {
   }
 
   /// The texture in the BMP file at `path`.
-  public static func read(_ path: String) throws(SceneError) -> Texture {
+  package static func read(_ path: String) throws(SceneError) -> Texture {
     let file = SceneParser.escaped(path)
     if let problem = MemoryNeed.problem(reading: path, perByte: 2) {
       throw SceneError(file: file, line: 0, column: 0, message: problem)

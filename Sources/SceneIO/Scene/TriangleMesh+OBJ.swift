@@ -1,4 +1,7 @@
-import SceneModel
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
 
 /// A mesh file's triangles as the scene keeps them (`TriangleMesh`).
 extension TriangleMesh<Double> {

@@ -2,7 +2,10 @@ import Foundation
 import XCTest
 
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// `raytrace compare` and `raytrace SCENE --check`, run as a student runs
 /// them: their lines and exit statuses.

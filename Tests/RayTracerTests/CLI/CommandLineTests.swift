@@ -4,7 +4,10 @@ import XCTest
 @testable import FastEngine
 @testable import Measurement
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// Runs the built `raytrace` executable, as students and graders do.
 final class CommandLineTests: XCTestCase {

@@ -2,7 +2,10 @@ import Foundation
 import XCTest
 
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// Outputs that are not plain files, names the final rename would refuse,
 /// and the other commands' outputs: all checked before any work.
@@ -27,7 +30,7 @@ extension OutputSafetyTests {
     ])
     var buffer = [UInt8](repeating: 0, count: 65536)
     let count = buffer.withUnsafeMutableBytes {
-      SceneModel.read(reader, $0.baseAddress, $0.count)
+      PlatformSupport.read(reader, $0.baseAddress, $0.count)
     }
     let data = buffer.prefix(max(count, 0))
     XCTAssertEqual(written.status, 0, written.stderr)

@@ -4,7 +4,10 @@ import XCTest
 @testable import FastEngine
 @testable import Measurement
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// What a run may do to files: outputs all or none, never over the scene
 /// or what it reads, nothing left behind by a signal, names escaped.

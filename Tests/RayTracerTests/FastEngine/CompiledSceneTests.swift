@@ -3,7 +3,10 @@ import XCTest
 @testable import FastEngine
 @testable import Measurement
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// The compiled scene (flattened, transforms baked into world space or
 /// carried as ellipsoids, camera-relative, hierarchies, per-tile culling)

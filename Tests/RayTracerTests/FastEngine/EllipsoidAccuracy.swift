@@ -2,7 +2,10 @@ import XCTest
 
 @testable import FastEngine
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// One ellipsoid scene of the accuracy tests: a unit sphere placed by a
 /// Transform's operations, seen by a camera, written in the text format.
@@ -122,8 +125,7 @@ struct EllipsoidAccuracy: CustomStringConvertible {
     let scene = try test.scene(R.self == Float.self ? .float : .double)
     let axes = test.axes
     let settings = RenderSettings(
-      width: width, height: height, outputs: [.depth, .normals],
-      precision: R.self == Float.self ? .float : .double)
+      width: width, height: height, outputs: [.depth, .normals])
     let buffers = Renderer.render(
       CompiledScene<StableKernel<R>>(scene), settings: settings)
     let placed = scene.root.flattened().transformedSpheres

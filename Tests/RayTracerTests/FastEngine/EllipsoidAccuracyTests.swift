@@ -2,7 +2,10 @@ import XCTest
 
 @testable import FastEngine
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// The fast engine's ellipsoids against the exact intersection of the very
 /// same camera rays (`ExactEllipsoid`, exact rational arithmetic in world

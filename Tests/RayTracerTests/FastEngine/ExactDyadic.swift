@@ -1,4 +1,7 @@
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// An exact binary rational m·2ᵉ (m an integer of any size): sums,
 /// differences and products of Doubles and Floats with no rounding at

@@ -1,4 +1,7 @@
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// The exact intersection of a ray E + t·d (E and d exactly as given, in
 /// Double or Float) with the ellipsoid M·{P : |P − c| = r} of a scene's

@@ -1,9 +1,13 @@
 import XCTest
 
 @testable import FastEngine
+@testable import Pipeline
 @testable import Measurement
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// A render's files encoded in pieces on several threads
 /// (`OutputEncoding`) hold the same images as each encoded on its own.

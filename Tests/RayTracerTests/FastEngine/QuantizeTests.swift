@@ -3,7 +3,10 @@ import XCTest
 @testable import FastEngine
 @testable import Measurement
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// `ImageStyle.quantize` takes a fast path through Double for Float and
 /// Double; it must agree with truncation (course) and rounding half away

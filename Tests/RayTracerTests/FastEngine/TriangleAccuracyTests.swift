@@ -2,7 +2,10 @@ import XCTest
 
 @testable import FastEngine
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// The fast engine's t for triangles of every size and shape, against the
 /// exact intersection of the very rays it traced (`exactTriangleT`: exact
@@ -317,8 +320,7 @@ final class TriangleAccuracyTests: XCTestCase {
   ) {
     let (width, height) = (64, 48)
     let settings = RenderSettings(
-      width: width, height: height, outputs: [.depth],
-      precision: S.self == Float.self ? .float : .double, threads: 1)
+      width: width, height: height, outputs: [.depth], threads: 1)
     let camera = PerspectiveCamera<S>(scene.camera)
     let aspect = S(height) / S(width)
     for (hierarchy, projection) in [(Int.max, Int.max), (1, Int.max), (Int.max, 1)] {

@@ -3,7 +3,10 @@ import XCTest
 @testable import FastEngine
 @testable import Measurement
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// `ScreenProjection.cornerExtent`, the short way to the screen extent of
 /// a triangle's corner (a ball far smaller than its distance): every point

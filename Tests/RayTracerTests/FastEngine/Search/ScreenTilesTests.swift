@@ -3,7 +3,10 @@ import XCTest
 @testable import FastEngine
 @testable import Measurement
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// Spheres projected onto screen tiles (`ScreenTiles`) against the searches
 /// already shown equal to testing every sphere (the BVH, and culling per
@@ -118,10 +121,9 @@ final class ScreenTilesTests: XCTestCase {
       for style in ImageStyle.allCases {
         // Sizes that are not multiples of a tile, and single rows and columns.
         for (width, height) in [(37, 23), (16, 4), (1, 9), (21, 1)] {
-          var settings = RenderSettings(
+          let settings = RenderSettings(
             width: width, height: height, outputs: [.depth, .normals, .shaded],
             style: style, threads: 2)
-          settings.projectionThreshold = 0
           assertSameImages(
             kernel, scene, settings,
             "\(Kernel.self) \(style) \(width)×\(height)")

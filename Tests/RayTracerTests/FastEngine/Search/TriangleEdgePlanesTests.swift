@@ -3,7 +3,10 @@ import XCTest
 @testable import FastEngine
 @testable import Measurement
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// `TriangleEdgePlanes`, the screen tiles' first look at a ray: a ray it
 /// excludes must be one the watertight test misses. The rays graze an edge

@@ -3,7 +3,10 @@ import XCTest
 @testable import FastEngine
 @testable import Measurement
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// The wide hierarchy's own guarantees. That it answers exactly as testing
 /// every sphere does is checked with the binary hierarchy's fixtures

@@ -2,7 +2,10 @@ import XCTest
 
 @testable import Measurement
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// Each kind of difference `raytrace compare` names, recognised on small
 /// made-up images: a disc of normals on a black background, as the course

@@ -3,7 +3,10 @@ import XCTest
 @testable import FastEngine
 @testable import Measurement
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// Renders every scene of `scenes/stiff/` at 64×64 in both precisions and
 /// holds the stable method to stated bounds against the reference path (the

@@ -1,7 +1,10 @@
 import XCTest
 
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// Every format the project writes reads back to the same values.
 final class ImageFileReaderTests: XCTestCase {

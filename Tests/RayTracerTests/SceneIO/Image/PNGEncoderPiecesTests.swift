@@ -4,7 +4,10 @@ import XCTest
 @testable import FastEngine
 @testable import Measurement
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// The image data compressed in pieces (`PNGEncoder.Pieces`): every cut of
 /// the rows must give the same pixels as one stream, and a zlib stream that

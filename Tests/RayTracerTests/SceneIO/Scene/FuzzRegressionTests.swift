@@ -4,7 +4,10 @@ import XCTest
 @testable import FastEngine
 @testable import Measurement
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// What fuzzing the parser (Fuzz/FuzzSceneParser.swift, run by Fuzz/run.sh)
 /// found, and the limits it relies on: every input parses or fails with one

@@ -2,7 +2,10 @@ import Foundation
 import XCTest
 
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// A mesh file a scene names many times is read once: every use shares
 /// the arrays, each with its own material.

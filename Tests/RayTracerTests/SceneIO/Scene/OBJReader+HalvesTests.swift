@@ -3,7 +3,10 @@ import XCTest
 @testable import FastEngine
 @testable import Measurement
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// An OBJ file read on two threads (`OBJReader.parseInHalves`) gives the
 /// mesh, or the error at its line and column, that one thread gives,

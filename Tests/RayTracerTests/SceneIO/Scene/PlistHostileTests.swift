@@ -2,7 +2,10 @@ import Foundation
 import XCTest
 
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// Property lists made to hurt the reader: counts that overflow, nesting
 /// hidden from a naive scan, shared references that expand exponentially,

@@ -4,7 +4,10 @@ import XCTest
 @testable import FastEngine
 @testable import Measurement
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// The course's property-list schema: every object and transform against
 /// the same scene in the text format, resources by name, and the errors

@@ -3,7 +3,10 @@ import XCTest
 @testable import FastEngine
 @testable import Measurement
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// Each project scene is kept in both formats (scenes/NAME.txt and
 /// scenes/NAME.plist, the second written by Scripts/scene-to-plist.py):

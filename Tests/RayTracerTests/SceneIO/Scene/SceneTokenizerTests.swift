@@ -4,7 +4,10 @@ import XCTest
 @testable import FastEngine
 @testable import Measurement
 @testable import SceneIO
-@testable import SceneModel
+@testable import Geometry
+@testable import SceneDescription
+@testable import Numerics
+@testable import PlatformSupport
 
 /// `plainSphere`, the one-pass reading of spheres, against the token by
 /// token reading it stands in for: the same values to the bit, the same

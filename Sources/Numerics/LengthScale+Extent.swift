@@ -1,0 +1,136 @@
+import Geometry
+import SceneDescription
+import PlatformSupport
+
+/// What the scale of a scene is judged from: its lengths seen from the
+/// eye, and the smallest of the measures whose squares must stay normal
+/// (see `LengthScale`, `LengthScale.tooSmall`).
+extension LengthScale {
+  /// The scene's largest length seen from the eye (`Primitive.reach`)
+  /// and, per kind, the smallest of the measures `tooSmall` compares at a
+  /// scale f: a radius squared (f²), a triangle's longest edge squared
+  /// (f²) and that times its reach (f³), an ellipsoid's shortest axis
+  /// squared (f²), a plane's distance from the eye (f). Some primitive
+  /// fails at f when one of these minima does (and, when a minimum is
+  /// itself below the range, perhaps when none does: a second pass, per
+  /// primitive, decides).
+  struct Extent {
+    let eye: Vector3<Double>
+    var largest: Double
+    var radiusSquared = Double.infinity
+    var edgeSquared = Double.infinity
+    var edgeSquaredReach = Double.infinity
+    var axisSquared = Double.infinity
+    var planeDistance = Double.infinity
+    /// The largest reach of an ellipsoid over its shortest axis: its eye
+    /// in its own space is that far from its centre, in radii.
+    var reachInAxes = 0.0
+
+    /// Nothing measured yet: the eye's own coordinates are not a length
+    /// of the scene (see `LengthScale`).
+    init(eye: Vector3<Double>) {
+      self.eye = eye
+      largest = 0
+    }
+
+    mutating func measure(_ object: SceneObject<Double>) {
+      switch object {
+      case .sphere(let sphere): add(sphere)
+      case .plane(let plane): add(plane)
+      case .triangle(let triangle): add(triangle)
+      case .mesh(let mesh): add(mesh)
+      case .group(let group):
+        for child in group.objects { measure(child) }
+      case .transform: add(Group([object]).flattened())
+      case .shape: break
+      }
+    }
+
+    /// Every primitive of `all`.
+    mutating func add(_ all: Primitives<Double>) {
+      for sphere in all.spheres { add(sphere) }
+      for plane in all.planes { add(plane) }
+      for mesh in all.triangles.parts { add(mesh) }
+      for ellipsoid in all.transformedSpheres {
+        let reach = ellipsoid.reach(from: eye)
+        largest = Swift.max(largest, reach)
+        let axis = ellipsoid.shortestAxis
+        axisSquared = Swift.min(axisSquared, axis * axis)
+        reachInAxes = Swift.max(reachInAxes, reach / axis)
+      }
+    }
+
+    mutating func add(_ plane: Plane<Double>) {
+      let distance = LengthScale.distance(plane, eye: eye)
+      largest = Swift.max(largest, distance)
+      if distance > 0 { planeDistance = Swift.min(planeDistance, distance) }
+    }
+
+    mutating func add(_ sphere: Sphere<Double>) {
+      largest = Swift.max(largest, sphere.reach(from: eye))
+      radiusSquared = Swift.min(radiusSquared, sphere.radius * sphere.radius)
+    }
+
+    /// Every triangle of `mesh`, by its vertices alone.
+    mutating func add(_ mesh: TriangleMesh<Double>) {
+      for index in mesh.indices { add(mesh.vertices(at: index)) }
+    }
+
+    mutating func add(_ triangle: Triangle<Double>) {
+      add((triangle.v0, triangle.v1, triangle.v2))
+    }
+
+    mutating func add(
+      _ vertices: (Vector3<Double>, Vector3<Double>, Vector3<Double>)
+    ) {
+      let (edge, reach) = LengthScale.edgeAndReach(vertices, eye: eye)
+      largest = Swift.max(largest, reach)
+      guard edge > 0 else { return }
+      edgeSquared = Swift.min(edgeSquared, edge * edge)
+      edgeSquaredReach = Swift.min(edgeSquaredReach, edge * edge * reach)
+    }
+
+    /// Whether some primitive fails at scale `f` (see `tooSmall`).
+    func fails(scale f: Double, smallest: Double) -> Bool {
+      radiusSquared * f * f < smallest || edgeSquared * f * f < smallest
+        || edgeSquaredReach * f * f * f < smallest
+        || axisSquared * f * f < 4 * smallest
+        || planeDistance * f < smallest
+    }
+  }
+
+  /// A plane's distance from the eye, |d − n·eye|, compensated and
+  /// rounded once (`CameraRelative.plane`): uncompensated, n·eye rounds by
+  /// half its ulp, which can be 2⁵³ times the distance (a plane 10²⁶⁸ from
+  /// an eye 10³⁰⁰ from the origin along a tilted normal).
+  static func distance(_ plane: Plane<Double>, eye: Vector3<Double>)
+    -> Double
+  {
+    let distance: Double = CameraRelative.plane(
+      normal: plane.normal, offset: plane.offset, eye: eye)
+    return distance.magnitude
+  }
+
+  /// A triangle's longest edge and the farthest of its vertices from the
+  /// eye, in max-norm.
+  static func edgeAndReach(_ triangle: Triangle<Double>, eye: Vector3<Double>)
+    -> (edge: Double, reach: Double)
+  {
+    edgeAndReach((triangle.v0, triangle.v1, triangle.v2), eye: eye)
+  }
+
+  /// `edgeAndReach` of the triangle with vertices `vertices`.
+  static func edgeAndReach(
+    _ vertices: (Vector3<Double>, Vector3<Double>, Vector3<Double>),
+    eye: Vector3<Double>
+  ) -> (edge: Double, reach: Double) {
+    let (a, b, c) = vertices
+    return (
+      Swift.max(
+        (b - a).maxMagnitude, (c - b).maxMagnitude, (a - c).maxMagnitude),
+      Swift.max(
+        (a - eye).maxMagnitude, (b - eye).maxMagnitude,
+        (c - eye).maxMagnitude)
+    )
+  }
+}

@@ -1,0 +1,146 @@
+import Dispatch
+import SceneIO
+import Geometry
+import SceneDescription
+import Numerics
+import PlatformSupport
+import Course
+import FastEngine
+
+/// A render's files as bytes: each 8-bit image read a row at a time from
+/// the buffers (`ImageStyle.depthRows` and the like, so no image is held
+/// whole beside them), PNGs cut into pieces (`PNGEncoder.Pieces`), and
+/// every piece of every file compressed on whichever thread is free.
+///
+/// Encoding the three files of a course render one per thread took as long
+/// as the render (the third file waited for a thread); in pieces the
+/// threads share the work evenly.
+enum OutputEncoding {
+  /// The bytes of each file, in the order of `files`.
+  static func encode<S: RayScalar>(
+    _ buffers: RenderBuffers<S>, files: [OutputFile], style: ImageStyle,
+    depthRange: ClosedRange<Double>?, png: PNGOptions
+  ) -> [[UInt8]] {
+    let jobs = files.map { file in
+      Job(file, buffers, style: style, depthRange: depthRange, png: png)
+    }
+    // Every job's parts, in file order.
+    let parts = jobs.indices.flatMap { job in
+      (0..<jobs[job].partCount).map { (job: job, part: $0) }
+    }
+    let results = Slots<Result>(count: parts.count)
+    DispatchQueue.concurrentPerform(iterations: parts.count) { index in
+      let (job, part) = parts[index]
+      results.store(jobs[job].encode(part: part), at: index)
+    }
+    var next = 0
+    return jobs.map { job in
+      let range = next..<(next + job.partCount)
+      next = range.upperBound
+      return job.assemble(range.map { results.value(at: $0) })
+    }
+  }
+
+  /// What one part of a job gives.
+  enum Result {
+    case piece(PNGEncoder.Pieces.Compressed)
+    case whole([UInt8])
+  }
+
+  /// One file: a PNG in pieces, or another format in one part.
+  enum Job: Sendable {
+    case png(PNGEncoder.Pieces)
+    case whole(@Sendable () -> [UInt8])
+
+    init<S: RayScalar>(
+      _ file: OutputFile, _ buffers: RenderBuffers<S>, style: ImageStyle,
+      depthRange: ClosedRange<Double>?, png: PNGOptions
+    ) {
+      guard file.format.isEightBit else {
+        let (kind, format) = (file.kind, file.format)
+        self = .whole {
+          Self.encodeRaw(RenderJob.rawImage(kind, buffers), format)
+        }
+        return
+      }
+      let rows =
+        file.kind == .depth
+        ? style.depthRows(buffers, range: depthRange)
+        : file.kind == .normals
+          ? style.normalRows(buffers) : style.colorRows(buffers)
+      if file.format == .png {
+        self = .png(PNGEncoder.Pieces(rows, options: png))
+      } else {
+        self = .whole { PPMEncoder.encode(rows.image) }
+      }
+    }
+
+    var partCount: Int {
+      switch self {
+      case .png(let pieces): pieces.count
+      case .whole: 1
+      }
+    }
+
+    func encode(part: Int) -> Result {
+      switch self {
+      case .png(let pieces): .piece(pieces.compress(part))
+      case .whole(let encode): .whole(encode())
+      }
+    }
+
+    func assemble(_ results: [Result]) -> [UInt8] {
+      switch self {
+      case .png(let pieces):
+        return pieces.assemble(
+          results.map {
+            guard case .piece(let piece) = $0 else {
+              preconditionFailure("a PNG job's part is a piece")
+            }
+            return piece
+          })
+      case .whole:
+        guard results.count == 1, case .whole(let bytes) = results[0] else {
+          preconditionFailure("a whole job has one part")
+        }
+        return bytes
+      }
+    }
+
+    /// PFM is 32-bit by definition; NPY keeps the render's precision.
+    private static func encodeRaw<S: RayScalar>(
+      _ image: RawImage<S>, _ format: ImageFormat
+    ) -> [UInt8] {
+      if format == .pfm { return PFMEncoder.encode(converting: image) }
+      return NPYEncoder.encode(image)
+    }
+  }
+}
+
+/// One slot per part of some work, each written by exactly one thread:
+/// fixed storage, so that no write touches shared array bookkeeping.
+final class Slots<Value>: @unchecked Sendable {
+  private let slots: UnsafeMutableBufferPointer<Value?>
+
+  init(count: Int) {
+    slots = .allocate(capacity: count)
+    slots.initialize(repeating: nil)
+  }
+
+  deinit {
+    slots.deinitialize()
+    slots.deallocate()
+  }
+
+  func store(_ value: Value, at index: Int) {
+    slots[index] = value
+  }
+
+  /// The value stored at `index`, which must have been stored.
+  func value(at index: Int) -> Value {
+    guard let value = slots[index] else {
+      preconditionFailure("slot \(index) was never stored")
+    }
+    return value
+  }
+}
