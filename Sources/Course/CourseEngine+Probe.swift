@@ -6,7 +6,7 @@ extension CourseEngine {
   /// group gives for it: its index in the group and its hit, for the
   /// objects that are hit. `raytrace SCENE --check` names the object the
   /// course engine hit at a pixel where the engines differ with this.
-  public static func probe(
+  package static func probe(
     _ scene: Scene, settings: RenderSettings, column: Int, row: Int
   ) -> (ray: Ray<Double>, hits: [(index: Int, hit: Hit<Double>)]) {
     let view = View(scene, textures: [], settings: settings)

@@ -40,7 +40,7 @@ public enum CourseEngine {
           }
           if outputs.contains(.shaded) {
             pixels.color.append(
-              settings.samples > 1
+              settings.supersamples
                 ? view.supersampledColor(column: column, row: row)
                 : view.color(ray, hit))
           }
@@ -63,7 +63,7 @@ struct View: Sendable {
 
   init(_ scene: Scene, textures: [Texture?], settings: RenderSettings) {
     self.scene = scene
-    camera = scene.camera.styled(settings.style)
+    camera = settings.camera(scene.camera)
     world = SceneObjects.group(scene.root)
     self.textures = textures
     self.settings = settings
@@ -95,7 +95,7 @@ struct View: Sendable {
     return material.shade(
       point: ray.point(at: hit.t), normal: hit.normal,
       viewDirection: ray.direction, ambient: scene.ambient,
-      lights: scene.lights, attenuate: settings.style == .mit)
+      lights: scene.lights, attenuate: settings.attenuatesLights)
   }
 
   /// The mean colour of the pixel's jittered samples (`PixelSamples`).

@@ -7,17 +7,55 @@ import PlatformSupport
 /// docs/ADDING-A-SHAPE.md): tested after its own kinds, through each
 /// shape's `Hittable.intersect`, in Double and in the world's units.
 extension CompiledScene {
-  /// Offers the hits of the other shapes to `nearest`, in order: each is
-  /// asked, in Double and in the world's units, for a hit strictly before
-  /// the best so far, when the ray meets its box.
+  /// Keeps the shapes, bounded ones first in scene order, then those
+  /// without a bound (a plane of one's own); a hierarchy over the bounded
+  /// ones' boxes, in the world's units, once there are two of them.
+  mutating func placeShapes(_ placed: [PlacedShape]) {
+    let all = placed.map { WorldShape($0) }
+    let boxes = all.map(\.boundingBox)
+    let bounded = all.indices.filter { boxes[$0] != nil }
+    let unbounded = all.indices.filter { boxes[$0] == nil }
+    shapes = (bounded + unbounded).map { all[$0] }
+    shapeBoxes = (bounded + unbounded).map { boxes[$0] }
+    boundedShapeCount = bounded.count
+    guard bounded.count >= 2 else { return }
+    let bvh = shapeBoxes.withUnsafeBufferPointer { boxes in
+      BoundingVolumeHierarchy<Double>(count: bounded.count) {
+        let box = boxes[$0]!
+        return (box.lower, box.upper)
+      }
+    }
+    bvh.arrange(&shapes)
+    bvh.arrange(&shapeBoxes)
+    shapeHierarchy = bvh
+  }
+
+  /// Offers the shapes' hits to `nearest`, each asked, in Double and in
+  /// the world's units, for a hit before the best so far: the bounded
+  /// ones through their hierarchy (or their box, for a single one), then
+  /// those without a bound in order.
   func testShapes(
     _ ray: CameraRay<Scalar>, _ nearest: inout NearestHit<Scalar, Nearest>
   ) {
     let world = shapeRay(ray)
+    let scale = Double(lengthScale)
+    var first = 0
+    if let shapeHierarchy {
+      let found = shapeHierarchy.nearest(
+        CameraRay(origin: world.origin, direction: world.direction),
+        before: Double(nearest.t) * scale,
+        leaves: ShapeLeaves(shapes: shapes, ray: world))
+      if let found {
+        nearest.test(.shape(found.index)) { before in
+          let t = Scalar(found.t / scale)
+          return t > 0 && t < before ? t : nil
+        }
+      }
+      first = boundedShapeCount
+    }
     let reciprocal = Vector3(
       1 / world.direction.x, 1 / world.direction.y, 1 / world.direction.z)
-    let scale = Double(lengthScale)
-    for index in shapes.indices {
+    for index in first..<shapes.count {
       nearest.test(.shape(index)) { before in
         let tMax = Double(before) * scale
         if let box = shapeBoxes[index],
@@ -42,6 +80,16 @@ extension CompiledScene {
   /// The hit of shape `index` found by `testShapes`: its nearest.
   func shapeHit(_ index: Int, _ ray: CameraRay<Scalar>) -> Hit<Double>? {
     shapes[index].intersect(shapeRay(ray), after: 0, before: .infinity)
+  }
+}
+
+/// The shapes in a hierarchy's leaves, as one world ray tests them.
+struct ShapeLeaves: LeafPrimitives {
+  let shapes: [WorldShape]
+  let ray: Ray<Double>
+
+  func intersect(_ position: Int, before tMax: Double) -> Double? {
+    shapes[position].intersect(ray, after: 0, before: tMax)?.t
   }
 }
 

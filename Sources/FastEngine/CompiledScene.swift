@@ -73,6 +73,10 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// box (`testShapes`); empty for every scene of the readers' own kinds.
   var shapes: [WorldShape] = []
   var shapeBoxes: [BoundingBox?] = []
+  /// The shapes before this index have a bound, and are searched through
+  /// `shapeHierarchy` when there is one.
+  var boundedShapeCount = 0
+  var shapeHierarchy: BoundingVolumeHierarchy<Double>?
   /// The eye in the world, in Double: where the shapes' rays start.
   let shapeEye: Vector3<Double>
   /// Objects the scene's common scale cannot hold, each group compiled at
@@ -241,8 +245,7 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       ellipsoidMaterials.append(
         Int32(truncatingIfNeeded: ellipsoid.sphere.materialIndex))
     }
-    shapes = all.shapes.map { WorldShape($0) }
-    shapeBoxes = shapes.map(\.boundingBox)
+    placeShapes(all.shapes)
   }
 
   /// The sphere count from which single-sample renders project spheres

@@ -24,20 +24,20 @@ package struct FastOptions: Sendable {
 
   /// `body`'s answer for the kernel of this precision and method: the one
   /// place that turns the two choices into a type.
-  package func withKernel<Body: KernelBody>(_ body: Body) throws
+  func withKernel<Body: KernelBody>(_ body: Body)
     -> Body.Result
   {
     switch (precision, method) {
-    case (.float, .naive): return try body.run(NaiveKernel<Float>.self)
-    case (.float, .stable): return try body.run(StableKernel<Float>.self)
-    case (.double, .naive): return try body.run(NaiveKernel<Double>.self)
-    case (.double, .stable): return try body.run(StableKernel<Double>.self)
+    case (.float, .naive): return body.run(NaiveKernel<Float>.self)
+    case (.float, .stable): return body.run(StableKernel<Float>.self)
+    case (.double, .naive): return body.run(NaiveKernel<Double>.self)
+    case (.double, .stable): return body.run(StableKernel<Double>.self)
     }
   }
 }
 
 /// Work generic over the fast engine's kernel (`FastOptions.withKernel`).
-package protocol KernelBody {
+protocol KernelBody {
   associatedtype Result
-  func run<Kernel: IntersectionKernel>(_ kernel: Kernel.Type) throws -> Result
+  func run<Kernel: IntersectionKernel>(_ kernel: Kernel.Type) -> Result
 }

@@ -49,7 +49,7 @@ extension Renderer {
   ) {
     let wantsDepth = targets.wantsDepth
     let wantsNormals = targets.wantsNormals
-    let shadeCentre = targets.wantsColor && settings.samples == 1
+    let shadeCentre = targets.wantsColor && !settings.supersamples
     guard let hit else {
       if wantsDepth { targets.depth[pixel] = .infinity }
       if wantsNormals { targets.setNormal(.zero, at: pixel) }
@@ -66,7 +66,7 @@ extension Renderer {
       targets.setColor(
         shade(
           hit, ray: ray, normal: normal, scene: scene,
-          attenuate: settings.style == .mit), at: pixel)
+          attenuate: settings.attenuatesLights), at: pixel)
     }
   }
 
@@ -158,7 +158,7 @@ extension Renderer {
         let ray = CameraRay(origin: scene.rayOrigin, direction: direction)
         sum += sampleColor(
           scene.nearest(ray, by: search), ray: ray, scene: scene,
-          attenuate: settings.style == .mit)
+          attenuate: settings.attenuatesLights)
       }
     }
     return sum / S(samples.count)

@@ -26,7 +26,7 @@ extension Renderer {
     precondition(
       tileColumns.count <= tileWidth
         && rows.count <= ScreenTiles<Kernel>.tileHeight)
-    let attenuate = settings.style == .mit
+    let attenuate = settings.attenuatesLights
     func slot(_ row: Int, _ column: Int) -> Int {
       (row - rows.lowerBound) * tileWidth + column - tileColumns.lowerBound
     }

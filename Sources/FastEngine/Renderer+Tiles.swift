@@ -26,12 +26,12 @@ extension Renderer {
         let triangleEntries = tiles.triangleEntries(
           ofTileAt: start, row: rows.lowerBound)
         let tile = start..<min(start + width, settings.width)
-        if settings.samples == 1 || targets.wantsDepth || targets.wantsNormals {
+        if !settings.supersamples || targets.wantsDepth || targets.wantsNormals {
           renderProjectedTile(
             entries, triangleEntries, columns: tile, rows: rows, columns,
             scene, camera, settings, targets)
         }
-        if settings.samples > 1 && targets.wantsColor {
+        if settings.supersamples && targets.wantsColor {
           renderProjectedSamples(
             entries, triangleEntries, columns: tile, rows: rows, scene, camera,
             settings, targets)
@@ -55,7 +55,7 @@ extension Renderer {
     // filter's reach (`PixelFilter.reach`) in pixels; the pyramid is
     // widened by that and by 1/16 pixel more, which covers the rounding of
     // a sample's screen coordinates (a few ε of a value within 2).
-    let reach = settings.samples > 1 ? settings.filter.reach + 1.0 / 16 : 0
+    let reach = settings.sampleMargin
     let (stepX, stepY) = (
       R(reach) * (columns.count > 1 ? columns[1] - columns[0] : 2),
       R(reach)
@@ -144,7 +144,7 @@ extension Renderer {
         let direction = directions[column - tile.lowerBound]
         let ray = CameraRay(origin: scene.rayOrigin, direction: direction)
         let pixel = row * width + column
-        if wantsColor && settings.samples > 1 {
+        if wantsColor && settings.supersamples {
           targets.setColor(
             supersampledColor(
               column: column, row: row, by: search, scene: scene,

@@ -70,8 +70,7 @@ package enum Renderer {
     var scene = scene
     var tiles: ScreenTiles<Kernel>?
     if scene.projectsSpheres || scene.projectsTriangles {
-      let camera = PerspectiveCamera<Kernel.Scalar>(scene.camera).styled(
-        settings.style)
+      let camera = settings.camera(scene.camera, as: Kernel.Scalar.self)
       tiles = ScreenTiles(
         scene, camera: camera, settings: settings, overlapLimit: overlapLimit)
     }
@@ -124,8 +123,7 @@ package enum Renderer {
     let height = settings.height
     let count = width * height
     let outputs = settings.outputs
-    let camera = PerspectiveCamera<RayPrecision>(scene.camera).styled(
-      settings.style)
+    let camera = settings.camera(scene.camera, as: RayPrecision.self)
     // Left uninitialised: every pixel of every requested buffer is written
     // exactly once below, so zeroing them first would only cost a pass
     // over memory on one thread.

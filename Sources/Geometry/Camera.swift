@@ -57,21 +57,6 @@ public struct PerspectiveCamera<Scalar: RayScalar>: Hashable, Sendable {
     focalDistance = Scalar(other.focalDistance)
   }
 
-  /// The camera as `style` builds its rays. The mit style's sample
-  /// solution takes the scene's `up` as the image's vertical axis without
-  /// making it perpendicular to the view direction: for a camera looking
-  /// up or down, its images are sheared vertically against the course
-  /// style's. Measured: every MIT reference image with a tilted camera
-  /// (scenes 02 and 04 to 07) matches to within 2 levels this way, and
-  /// 50–98% of pixels with the perpendicular axis. Where up is already
-  /// perpendicular the two agree.
-  public func styled(_ style: ImageStyle) -> PerspectiveCamera {
-    guard style == .mit else { return self }
-    var camera = self
-    camera.up = givenUp
-    return camera
-  }
-
   /// The unit direction through screen point (x, y); `aspect` is H / W.
   @inlinable
   public func rayDirection(x: Scalar, y: Scalar, aspect: Scalar) -> Vector3<

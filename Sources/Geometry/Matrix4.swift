@@ -103,7 +103,7 @@ public struct Matrix4<Scalar: RayScalar>: Hashable, Sendable {
   /// The entry at (row, column), both in 0...3.
   ///
   /// - Precondition: row and column in 0...3.
-  public subscript(row: Int, column: Int) -> Scalar {
+  package subscript(row: Int, column: Int) -> Scalar {
     get {
       precondition((0..<4).contains(row) && (0..<4).contains(column))
       switch (row, column) {
@@ -149,7 +149,7 @@ public struct Matrix4<Scalar: RayScalar>: Hashable, Sendable {
   }
 
   /// The sixteen entries row by row, the inverse of `init(rows:)`.
-  public var rowMajorEntries: [Scalar] {
+  package var rowMajorEntries: [Scalar] {
     [
       m00, m01, m02, m03, m10, m11, m12, m13,
       m20, m21, m22, m23, m30, m31, m32, m33,
@@ -159,7 +159,7 @@ public struct Matrix4<Scalar: RayScalar>: Hashable, Sendable {
   /// Whether the last row is exactly (0, 0, 0, 1): every transform the scene
   /// language builds except a general `Matrix4f`.
   @inlinable
-  public var isAffine: Bool {
+  package var isAffine: Bool {
     m30 == 0 && m31 == 0 && m32 == 0 && m33 == 1
   }
 }
@@ -330,7 +330,7 @@ extension Matrix4 {
   /// transform): negative for a mirroring transform, which reverses the
   /// winding of triangles; zero for a flattening one.
   @inlinable
-  public var linearDeterminant: Scalar {
+  package var linearDeterminant: Scalar {
     m00 * (m11 * m22 - m12 * m21)
       - m01 * (m10 * m22 - m12 * m20)
       + m02 * (m10 * m21 - m11 * m20)

@@ -13,8 +13,8 @@ public struct RenderBuffers<Scalar: RayScalar>: Sendable {
   /// bytes each, `ImageStyle.pixel`), for outputs the render was told are
   /// only written as 8-bit images (`RenderSettings.quantizedOutputs`);
   /// `normals` and `color` are then empty.
-  public var normalBytes: [UInt8] = []
-  public var colorBytes: [UInt8] = []
+  package var normalBytes: [UInt8] = []
+  package var colorBytes: [UInt8] = []
 
   public init(
     width: Int, height: Int, depth: [Scalar] = [],

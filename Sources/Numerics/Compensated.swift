@@ -10,10 +10,10 @@ import PlatformSupport
 /// They run where cancellation would otherwise lose every digit: the
 /// camera-relative sphere constants |p|² − r² of a planet seen from one unit
 /// above it, and the denominator n·d of a plane seen at a grazing angle.
-package enum Compensated {
+public enum Compensated {
   /// s + e == a + b exactly, with s = fl(a + b) (Knuth's TwoSum, no branch).
   @inlinable
-  package static func twoSum<S: RayScalar>(_ a: S, _ b: S) -> (sum: S, error: S)
+  public static func twoSum<S: RayScalar>(_ a: S, _ b: S) -> (sum: S, error: S)
   {
     let s = a + b
     let bVirtual = s - a
@@ -31,7 +31,7 @@ package enum Compensated {
   /// vectors, uses `splitProduct` (docs/PERFORMANCE.md, "The cost of
   /// working across the whole range").
   @inlinable @inline(__always)
-  package static func twoProduct<S: RayScalar>(
+  public static func twoProduct<S: RayScalar>(
     _ a: S, _ b: S
   ) -> (product: S, error: S) {
     if S.self == Float.self {
@@ -48,7 +48,7 @@ package enum Compensated {
   /// error term is not subnormal; for Float, `twoProduct`'s Double
   /// product. Outside that range use `twoProduct`.
   @inlinable @inline(__always)
-  package static func splitProduct<S: RayScalar>(
+  public static func splitProduct<S: RayScalar>(
     _ a: S, _ b: S
   ) -> (product: S, error: S) {
     if S.self == Float.self { return twoProduct(a, b) }
@@ -86,7 +86,7 @@ package enum Compensated {
   /// type's largest exponent) and products above the subnormal range, as
   /// the unit normals and directions of the render's planes are.
   @inlinable
-  package static func dot<S: RayScalar>(
+  public static func dot<S: RayScalar>(
     _ a: Vector3<S>, _ b: Vector3<S>
   ) -> S {
     let px = splitProduct(a.x, b.x)
@@ -100,7 +100,7 @@ package enum Compensated {
 
   /// Σ terms, as if evaluated in twice the precision and rounded (Sum2).
   @inlinable
-  package static func sum<Terms: Sequence>(_ terms: Terms) -> Terms.Element
+  public static func sum<Terms: Sequence>(_ terms: Terms) -> Terms.Element
   where Terms.Element: RayScalar {
     let pair = sumPair(terms)
     return pair.sum + pair.error
@@ -110,7 +110,7 @@ package enum Compensated {
   /// as if evaluated in twice the precision (Sum2 with its last addition
   /// renormalised by twoSum).
   @inlinable
-  package static func sumPair<Terms: Sequence>(
+  public static func sumPair<Terms: Sequence>(
     _ terms: Terms
   ) -> (sum: Terms.Element, error: Terms.Element)
   where Terms.Element: RayScalar {
@@ -130,7 +130,7 @@ package enum Compensated {
   /// ulp(sum)/2 cannot move sum across a midpoint of S, which lies a whole
   /// ulp of Input away or more, so S(sum) is already correct.
   @inlinable
-  package static func narrow<Input: RayScalar, S: RayScalar>(
+  public static func narrow<Input: RayScalar, S: RayScalar>(
     _ sum: Input, _ error: Input, to _: S.Type = S.self
   ) -> S {
     let rounded = S(sum)

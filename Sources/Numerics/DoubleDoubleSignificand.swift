@@ -11,14 +11,14 @@ import PlatformSupport
 /// complete `FixedWidthInteger` (trapping `+ − × ÷` on overflow, wrapping
 /// `&+` etc.), written for correctness, not speed: division is bit-serial.
 @frozen
-package struct DoubleDoubleSignificand: Sendable, Hashable {
+public struct DoubleDoubleSignificand: Sendable, Hashable {
   /// The upper 64 bits.
-  package var high: UInt64
+  public var high: UInt64
   /// The lower 64 bits.
-  package var low: UInt64
+  public var low: UInt64
 
   @inlinable
-  package init(high: UInt64, low: UInt64) {
+  public init(high: UInt64, low: UInt64) {
     self.high = high
     self.low = low
   }

@@ -24,7 +24,7 @@ extension LengthScale {
   /// from it, so an eye at 1e14 beside a unit sphere, or at 1e300 beside
   /// a speck of 1e-300 (double), is judged as the same scene with the eye
   /// at the origin (`frame` moves such scenes to the eye before scaling).
-  package static func problem(_ scene: Scene, precision: Precision)
+  public static func problem(_ scene: Scene, precision: Precision)
     -> String?
   {
     let scale: (Double) -> Double = {
@@ -88,7 +88,7 @@ extension LengthScale {
   /// wherever the eye is), or whose products with its distance from the
   /// eye overflow (`tooLargeUnscaled`: a sphere 1e200 from the eye). Every
   /// scene `problem` refuses in double is refused here too.
-  package static func unscaledProblem(_ scene: Scene) -> String? {
+  public static func unscaledProblem(_ scene: Scene) -> String? {
     let eye = scene.camera.center
     var extent = Extent(eye: eye)
     extent.measure(.group(scene.root))

@@ -16,7 +16,7 @@ import PlatformSupport
 /// read for one precision is not reused for another.
 extension Precision {
   /// The largest finite magnitude of the precision.
-  package var largestFinite: Double {
+  public var largestFinite: Double {
     switch self {
     case .float: Double(Float.greatestFiniteMagnitude)
     case .double: Double.greatestFiniteMagnitude
@@ -24,7 +24,7 @@ extension Precision {
   }
 
   /// The smallest positive normal magnitude of the precision.
-  package var smallestNormal: Double {
+  public var smallestNormal: Double {
     switch self {
     case .float: Double(Float.leastNormalMagnitude)
     case .double: Double.leastNormalMagnitude
@@ -35,7 +35,7 @@ extension Precision {
   /// this precision that is zero only when `value` is, and never
   /// subnormal. Cheap: the fast path of every number read.
   @inlinable
-  package func holds(_ value: Double) -> Bool {
+  public func holds(_ value: Double) -> Bool {
     switch self {
     case .double:
       return value.isFinite && (value == 0 || value.isNormal)
@@ -52,7 +52,7 @@ extension Precision {
   ///
   /// The message names the text, the precision and its limit, and for
   /// Float suggests `--precision double`.
-  package func rangeProblem(_ value: Double, text: String) -> String? {
+  public func rangeProblem(_ value: Double, text: String) -> String? {
     let overflows =
       value.isInfinite || self == .float && Float(value).isInfinite
     let roundsToZero =
@@ -79,13 +79,13 @@ extension Precision {
 
   /// Whether `value` rounds to a finite number in this precision.
   @inlinable
-  package func isFinite(_ value: Double) -> Bool {
+  public func isFinite(_ value: Double) -> Bool {
     self == .float ? Float(value).isFinite : value.isFinite
   }
 
   /// The message for a derived quantity (a Transform's matrix, a point it
   /// moves) that leaves the precision's finite range.
-  package func overflowSuffix() -> String {
+  public func overflowSuffix() -> String {
     self == .float
       ? "beyond the finite range of float; use --precision double"
       : "beyond the finite range of double"
@@ -105,7 +105,7 @@ extension Precision {
     writesNonZero(bytes: text.utf8)
   }
 
-  package static func writesNonZero<Bytes: Sequence<UInt8>>(bytes: Bytes) -> Bool {
+  public static func writesNonZero<Bytes: Sequence<UInt8>>(bytes: Bytes) -> Bool {
     for byte in bytes {
       switch byte {
       case UInt8(ascii: "1")...UInt8(ascii: "9"): return true
@@ -120,7 +120,7 @@ extension Precision {
 
   /// Whether `text` is a decimal number (digits, a sign, a point, an
   /// exponent) rather than a word such as "inf" or "nan".
-  package static func isDecimal(_ text: String) -> Bool {
+  public static func isDecimal(_ text: String) -> Bool {
     text.utf8.allSatisfy {
       ($0 >= UInt8(ascii: "0") && $0 <= UInt8(ascii: "9"))
         || $0 == UInt8(ascii: "+") || $0 == UInt8(ascii: "-")

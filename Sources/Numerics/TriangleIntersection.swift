@@ -36,7 +36,7 @@ import PlatformSupport
 ///   exact; a ray parallel to the plane but off it misses. `Triangle` also
 ///   rejects hits on triangles whose geometric normal is zero, for collinear
 ///   vertices whose rounded projection is not exactly collinear.
-package enum TriangleIntersection {
+public enum TriangleIntersection {
   /// The nearest-in-interval hit of the prepared ray with triangle
   /// (v0, v1, v2), or nil.
   ///
@@ -52,7 +52,7 @@ package enum TriangleIntersection {
   ///   absolute error of a few ε times (distance from the origin / size of
   ///   the triangle): the shear subtracts nearly equal numbers.
   @inlinable
-  package static func intersect<S: RayScalar>(
+  public static func intersect<S: RayScalar>(
     _ ray: WatertightRay<S>, _ v0: Vector3<S>, _ v1: Vector3<S>,
     _ v2: Vector3<S>, after tMin: S, before tMax: S
   ) -> (t: S, u: S, v: S, w: S)? {
@@ -65,7 +65,7 @@ package enum TriangleIntersection {
   /// against many rays that share origin and permutation (a screen tile's)
   /// is permuted once for all of them.
   @inlinable @inline(__always)
-  package static func intersect<S: RayScalar>(
+  public static func intersect<S: RayScalar>(
     _ ray: WatertightRay<S>, _ triangle: PermutedTriangle<S>,
     after tMin: S, before tMax: S
   ) -> (t: S, u: S, v: S, w: S)? {
@@ -77,7 +77,7 @@ package enum TriangleIntersection {
   /// functions decide hit or miss on the ray's whole line and give the
   /// same barycentrics, bit for bit; t is the plane's, in (tMin, tMax).
   @inlinable @inline(__always)
-  package static func intersect<S: RayScalar>(
+  public static func intersect<S: RayScalar>(
     _ ray: WatertightRay<S>, _ triangle: PermutedTriangle<S>,
     plane: TrianglePlane.Exact<S>, after tMin: S, before tMax: S
   ) -> (t: S, u: S, v: S, w: S)? {
@@ -89,7 +89,7 @@ package enum TriangleIntersection {
   /// looks up a triangle's plane for the few rays that reach it), or the
   /// watertight test's t when it gives none.
   @inlinable @inline(__always)
-  package static func intersect<S: RayScalar>(
+  public static func intersect<S: RayScalar>(
     _ ray: WatertightRay<S>, _ triangle: PermutedTriangle<S>,
     after tMin: S, before tMax: S,
     exactPlane: () -> TrianglePlane.Exact<S>?
@@ -124,7 +124,7 @@ package enum TriangleIntersection {
   /// engine's large triangles, which take t from their plane, use it where
   /// that holds (`LargeTrianglePlane.edgesDecide`).
   @inlinable @inline(__always)
-  package static func covers<S: RayScalar>(
+  public static func covers<S: RayScalar>(
     _ ray: WatertightRay<S>, _ v0: Vector3<S>, _ v1: Vector3<S>,
     _ v2: Vector3<S>
   ) -> Bool {
@@ -207,13 +207,13 @@ package enum TriangleIntersection {
 /// the watertight test, before the shear. It depends on the ray only
 /// through its origin and permutation, so rays that share both (a screen
 /// tile's, as a rule) can share it.
-package struct PermutedTriangle<S: RayScalar>: Sendable {
-  package var a: Vector3<S>
-  package var b: Vector3<S>
-  package var c: Vector3<S>
+public struct PermutedTriangle<S: RayScalar>: Sendable {
+  public var a: Vector3<S>
+  public var b: Vector3<S>
+  public var c: Vector3<S>
 
   @inlinable @inline(__always)
-  package init(
+  public init(
     _ ray: WatertightRay<S>, _ v0: Vector3<S>, _ v1: Vector3<S>,
     _ v2: Vector3<S>
   ) {
@@ -231,7 +231,7 @@ extension WatertightRay {
   /// this ray as for `other`: the same permutation and the same origin,
   /// zeros' signs included (v − 0 and v − (−0) differ for v = −0).
   @inlinable @inline(__always)
-  package func sharesFrame(with other: WatertightRay) -> Bool {
+  public func sharesFrame(with other: WatertightRay) -> Bool {
     func same(_ p: S, _ q: S) -> Bool { p == q && p.sign == q.sign }
     return kx == other.kx && ky == other.ky && kz == other.kz
       && same(origin.x, other.origin.x) && same(origin.y, other.origin.y)
@@ -250,21 +250,21 @@ extension WatertightRay {
 /// triangles' winding (the sign of the edge functions) as seen from the
 /// ray. A zero or non-finite direction gives NaN shears, and every
 /// triangle misses.
-package struct WatertightRay<S: RayScalar>: Hashable, Sendable {
-  package var origin: Vector3<S>
+public struct WatertightRay<S: RayScalar>: Hashable, Sendable {
+  public var origin: Vector3<S>
   /// The ray's direction, for the plane of large triangles
   /// (`TrianglePlane`).
-  package var direction: Vector3<S>
-  package var kx: Int
-  package var ky: Int
-  package var kz: Int
+  public var direction: Vector3<S>
+  public var kx: Int
+  public var ky: Int
+  public var kz: Int
   /// d[kx]/d[kz], d[ky]/d[kz] and 1/d[kz].
-  package var shearX: S
-  package var shearY: S
-  package var shearZ: S
+  public var shearX: S
+  public var shearY: S
+  public var shearZ: S
 
   @inlinable
-  package init(_ ray: Ray<S>) {
+  public init(_ ray: Ray<S>) {
     let d = ray.direction
     let x = d.x.magnitude
     let y = d.y.magnitude

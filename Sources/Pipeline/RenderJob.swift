@@ -48,7 +48,7 @@ package struct RenderReport: Sendable {
   /// supersampled shading.
   package var rays: Int {
     let perPixel =
-      settings.samples > 1 && settings.outputs.contains(.shaded)
+      settings.supersamples && settings.outputs.contains(.shaded)
       ? settings.samples + 1 : 1
     return settings.width * settings.height * perPixel
   }
@@ -134,10 +134,7 @@ package enum RenderJob {
     case .course:
       return try runCourse(scene, textures, output, progress)
     case .fast:
-      return try request.fast.withKernel(
-        FastRender(
-          scene: scene, textures: textures, output: output,
-          progress: progress))
+      return try runFast(scene, textures, output, progress)
     }
   }
 
@@ -151,56 +148,45 @@ package enum RenderJob {
     var batch: OutputBatch
   }
 
-  /// The fast engine's render with the request's kernel.
-  private struct FastRender: KernelBody {
-    var scene: Scene
-    var textures: [Texture?]
-    var output: Output
-    var progress: (@Sendable (Int) -> Void)?
-
-    func run<Kernel: IntersectionKernel>(_ kernel: Kernel.Type) throws
-      -> RenderReport
-    {
-      try RenderJob.run(kernel, scene, textures, output, progress)
-    }
-  }
-
-  private static func run<Kernel: IntersectionKernel>(
-    _ kernel: Kernel.Type, _ scene: Scene, _ textures: [Texture?],
-    _ output: Output, _ progress: (@Sendable (Int) -> Void)?
+  /// The fast engine's render: compiled for the request's precision and
+  /// method (`FastScene`), rendered, repeated, written.
+  private static func runFast(
+    _ scene: Scene, _ textures: [Texture?], _ output: Output,
+    _ progress: (@Sendable (Int) -> Void)?
   ) throws -> RenderReport {
     let settings = output.settings
-    let options = output.request.fast
     var clock = Stopwatch()
-    let compiled = CompiledScene<Kernel>(
-      scene, textures: textures,
-      // Spheres are culled per tile below the projection threshold and
-      // projected above it, a hierarchy built only where the projection
-      // declines (`Renderer.renderReportingSearch`); supersampled renders
-      // too, their tiles and boxes widened by the filter's reach.
-      hierarchyThreshold: options.hierarchyThreshold ?? .max,
-      projectionThreshold: options.projectionThreshold
-        ?? (settings.samples > 1
-          ? CompiledScene<Kernel>.supersampledProjectionThreshold
-          : CompiledScene<Kernel>.projectionThreshold),
-      triangleProjectionThreshold: options.triangleProjectionThreshold
-        ?? CompiledScene<Kernel>.triangleProjectionThreshold)
+    let compiled = FastScene(
+      scene, textures: textures, options: output.request.fast,
+      thresholds: .render(supersampled: settings.supersamples))
     let compileSeconds = clock.lap()
     let rendered = repeatedly(
-      output.request.repeats, progress: progress, clock: &clock
-    ) { progress, recycled in
-      Renderer.renderReportingSearch(
-        compiled, settings: settings, progress: progress,
-        recycling: consume recycled)
+      output.request.repeats, progress: progress, clock: &clock,
+      empty: .double(RenderBuffers(width: 0, height: 0))
+    ) {
+      (
+        progress: (@Sendable (Int) -> Void)?,
+        recycled: consuming AnyRenderBuffers?
+      ) -> Rendered<AnyRenderBuffers> in
+      let result = compiled.render(
+        settings, progress: progress, recycling: consume recycled)
+      return (result.buffers, result.search, result.triangleSearch)
     }
-    var report = try write(
-      rendered.result.buffers, output, clock: &clock,
-      search: rendered.result.search, seconds: rendered.seconds,
-      compileSeconds: compileSeconds)
-    report.spheres = compiled.sphereCount
-    report.planes = compiled.planeCount
-    report.triangles = compiled.triangleCount
-    report.ellipsoids = compiled.ellipsoidCount
+    var report: RenderReport
+    switch rendered.result.buffers {
+    case .float(let buffers):
+      report = try write(
+        buffers, output, clock: &clock, search: rendered.result.search,
+        seconds: rendered.seconds, compileSeconds: compileSeconds)
+    case .double(let buffers):
+      report = try write(
+        buffers, output, clock: &clock, search: rendered.result.search,
+        seconds: rendered.seconds, compileSeconds: compileSeconds)
+    }
+    report.spheres = compiled.spheres
+    report.planes = compiled.planes
+    report.triangles = compiled.triangles
+    report.ellipsoids = compiled.ellipsoids
     report.triangleSearch = rendered.result.triangleSearch
     return report
   }
@@ -213,7 +199,8 @@ package enum RenderJob {
   ) throws -> RenderReport {
     var clock = Stopwatch()
     let rendered = repeatedly(
-      output.request.repeats, progress: progress, clock: &clock
+      output.request.repeats, progress: progress, clock: &clock,
+      empty: RenderBuffers<Double>(width: 0, height: 0)
     ) { progress, _ in
       (
         CourseEngine.render(
@@ -240,18 +227,18 @@ package enum RenderJob {
   /// (`render`'s second argument; the fast engine reuses them), as a
   /// program that redraws an image keeps its memory: the first render's
   /// time includes faulting fresh buffers in, the repeats' do not.
-  private static func repeatedly<S: RayScalar>(
+  private static func repeatedly<Buffers>(
     _ repeats: Int, progress: (@Sendable (Int) -> Void)?,
-    clock: inout Stopwatch,
+    clock: inout Stopwatch, empty: Buffers,
     _ render:
-      ((@Sendable (Int) -> Void)?, consuming RenderBuffers<S>?) -> Rendered<S>
-  ) -> (result: Rendered<S>, seconds: (first: Double, median: Double)) {
+      ((@Sendable (Int) -> Void)?, consuming Buffers?) -> Rendered<Buffers>
+  ) -> (result: Rendered<Buffers>, seconds: (first: Double, median: Double)) {
     var result = render(progress, nil)
     let first = clock.lap()
     var repeated: [Double] = []
     for _ in 0..<repeats {
       let buffers = result.buffers
-      result.buffers = RenderBuffers(width: 0, height: 0)
+      result.buffers = empty
       _ = clock.lap()
       result = render(nil, consume buffers)
       repeated.append(clock.lap())
@@ -259,8 +246,8 @@ package enum RenderJob {
     return (result, (first, repeated.isEmpty ? first : median(repeated)))
   }
 
-  private typealias Rendered<S: RayScalar> = (
-    buffers: RenderBuffers<S>, search: Renderer.SphereSearch,
+  private typealias Rendered<Buffers> = (
+    buffers: Buffers, search: Renderer.SphereSearch,
     triangleSearch: Renderer.TriangleSearch
   )
 

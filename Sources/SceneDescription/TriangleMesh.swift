@@ -17,41 +17,41 @@ import Geometry
 /// them) get three vertices each and, per triangle, their own material.
 public struct TriangleMesh<Scalar: RayScalar>: Hashable, Sendable {
   /// Positions, shared by the triangles that index them.
-  public package(set) var vertices: [Vector3<Scalar>] = []
+  package var vertices: [Vector3<Scalar>] = []
   /// Normals, as given (not normalised); indexed by `normalIndices`, or by
   /// the vertex indices when `normalsFollowVertices`.
-  public package(set) var normals: [Vector3<Scalar>] = []
-  public private(set) var textureCoordinates: [TextureCoordinate<Scalar>] = []
+  package var normals: [Vector3<Scalar>] = []
+  package private(set) var textureCoordinates: [TextureCoordinate<Scalar>] = []
   /// Three per triangle, into `vertices`, in the order of its vertices.
-  public private(set) var vertexIndices: [Int32] = []
+  package private(set) var vertexIndices: [Int32] = []
   /// Three per triangle into `normals`, −1s for a triangle without vertex
   /// normals; may be empty when no triangle has them, and is empty when
   /// `normalsFollowVertices`.
-  public private(set) var normalIndices: [Int32] = []
+  package private(set) var normalIndices: [Int32] = []
   /// Whether every triangle's normals are those of its vertices,
   /// `normals[vertexIndices[…]]`: a smoothed mesh, a normal per vertex.
-  public private(set) var normalsFollowVertices = false
+  package private(set) var normalsFollowVertices = false
   /// Three per triangle into `textureCoordinates`, −1s for a triangle
   /// without; may be empty when no triangle has them.
-  public private(set) var textureIndices: [Int32] = []
+  package private(set) var textureIndices: [Int32] = []
   /// Every triangle's material, unless `materialIndices` gives one each.
   public private(set) var materialIndex = 0
   /// One per triangle, or empty when all have `materialIndex`.
-  public private(set) var materialIndices: [Int] = []
+  package private(set) var materialIndices: [Int] = []
   /// Which reading of a file the arrays come from: the same for every copy
   /// and `withMaterial` of one mesh, so that a renderer can build what it
   /// needs of a mesh once however often the scene names it. It takes no
   /// part in comparing meshes.
-  public package(set) var storage = StorageTag()
+  package var storage = StorageTag()
 
   /// A tag equal to every other: meshes compare by their triangles.
-  public struct StorageTag: Hashable, Sendable {
+  package struct StorageTag: Hashable, Sendable {
     private final class Token: Sendable {}
     private let token = Token()
-    public init() {}
-    public var identity: ObjectIdentifier { ObjectIdentifier(token) }
-    public static func == (_: StorageTag, _: StorageTag) -> Bool { true }
-    public func hash(into hasher: inout Hasher) {}
+    package init() {}
+    package var identity: ObjectIdentifier { ObjectIdentifier(token) }
+    package static func == (_: StorageTag, _: StorageTag) -> Bool { true }
+    package func hash(into hasher: inout Hasher) {}
   }
 
   /// An empty mesh, for `append`.
@@ -150,7 +150,7 @@ public struct TriangleMesh<Scalar: RayScalar>: Hashable, Sendable {
 
   /// The indices into `vertices` of triangle `index`'s v0, v1 and v2.
   @inline(__always)
-  public func corners(_ index: Int) -> (Int, Int, Int) {
+  package func corners(_ index: Int) -> (Int, Int, Int) {
     (
       Int(vertexIndices[3 * index]), Int(vertexIndices[3 * index + 1]),
       Int(vertexIndices[3 * index + 2])
@@ -159,14 +159,14 @@ public struct TriangleMesh<Scalar: RayScalar>: Hashable, Sendable {
 
   /// Triangle `index`'s indices into `normals`, or nil when it has none.
   @inline(__always)
-  public func normalCorners(_ index: Int) -> (Int, Int, Int)? {
+  package func normalCorners(_ index: Int) -> (Int, Int, Int)? {
     normalsFollowVertices
       ? corners(index) : Self.corners(index, in: normalIndices)
   }
 
   /// Triangle `index`'s indices into `textureCoordinates`, or nil.
   @inline(__always)
-  public func textureCorners(_ index: Int) -> (Int, Int, Int)? {
+  package func textureCorners(_ index: Int) -> (Int, Int, Int)? {
     Self.corners(index, in: textureIndices)
   }
 
@@ -195,13 +195,13 @@ public struct TriangleMesh<Scalar: RayScalar>: Hashable, Sendable {
 
   /// Triangle `index`'s material.
   @inline(__always)
-  public func material(at index: Int) -> Int {
+  package func material(at index: Int) -> Int {
     materialIndices.isEmpty ? materialIndex : materialIndices[index]
   }
 
   /// Triangle `index`'s three vertices.
   @inline(__always)
-  public func vertices(at index: Int) -> (
+  package func vertices(at index: Int) -> (
     Vector3<Scalar>, Vector3<Scalar>, Vector3<Scalar>
   ) {
     let (a, b, c) = corners(index)

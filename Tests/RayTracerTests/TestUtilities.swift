@@ -307,14 +307,76 @@ enum ProjectFiles {
 
 // MARK: - Long cases
 
+/// Whether the long cases run (RAYTRACE_LONG_TESTS set; `.ci/run` sets
+/// it).
+let runsLongTests =
+  ProcessInfo.processInfo.environment["RAYTRACE_LONG_TESTS"] != nil
+
 extension XCTestCase {
+  /// How many of a slow randomized test's `iterations` seeds run (as
+  /// `forEachSeed(Self.seedCount(n), …)`): all of them with
+  /// RAYTRACE_LONG_TESTS (CI), a quarter otherwise, so that a student's
+  /// `swift test` in the unoptimised debug build stays within a minute.
+  /// The seeds run are the first of the same sequence, so a failure found
+  /// either way replays the same.
+  static func seedCount(_ iterations: Int) -> Int {
+    runsLongTests ? iterations : max(1, (iterations + 3) / 4)
+  }
+
   /// Skips a case that takes seconds (exhaustive sweeps, every stiff scene
   /// against the double-double reference) unless RAYTRACE_LONG_TESTS is
   /// set, so that `swift test` stays within a minute on two cores; `.ci/run`
   /// sets it, so CI runs every case.
   func skipUnlessLongTests() throws {
     try XCTSkipUnless(
-      ProcessInfo.processInfo.environment["RAYTRACE_LONG_TESTS"] != nil,
-      "a long case: RAYTRACE_LONG_TESTS=1 swift test runs it")
+      runsLongTests, "a long case: RAYTRACE_LONG_TESTS=1 swift test runs it")
+  }
+}
+
+/// `camera` as `style` builds its rays (`RenderSettings.camera`).
+func styled<S: RayScalar>(_ camera: PerspectiveCamera<S>, _ style: ImageStyle)
+  -> PerspectiveCamera<S>
+{
+  RenderSettings(width: 1, height: 1, outputs: [], style: style).camera(camera)
+}
+
+extension OBJMesh {
+  /// Every face as a model triangle in precision S (`triangle(at:)`).
+  func makeTriangles<S: RayScalar>(
+    materialIndex: Int, as _: S.Type = S.self
+  ) -> [Triangle<S>] {
+    (0..<triangleCount).map {
+      triangle(at: $0, materialIndex: materialIndex, as: S.self)
+    }
+  }
+
+  /// The model triangle of `triangles[index]` in precision S, with vertex
+  /// normals and texture coordinates where the face gave them, for callers
+  /// that store each one straight into their own array. A degenerate
+  /// triangle (a repeated vertex, a zero-area face) is made as any other:
+  /// it is never hit, and dropping it is the compiled scene's choice.
+  ///
+  /// - Precondition: `0 <= index < triangleCount`.
+  func triangle<S: RayScalar>(
+    at index: Int, materialIndex: Int, as _: S.Type = S.self
+  ) -> Triangle<S> {
+    let face = face(index)
+    let v = face.vertexIndices
+    let normals = face.normalIndices.map { n in
+      Triangle<S>.VertexNormals(
+        Vector3<S>(self.normals[Int(n.x)]),
+        Vector3<S>(self.normals[Int(n.y)]),
+        Vector3<S>(self.normals[Int(n.z)]))
+    }
+    let coordinates = face.textureIndices.map { t in
+      Triangle<S>.TextureCoordinates(
+        TextureCoordinate<S>(textureCoordinates[Int(t.x)]),
+        TextureCoordinate<S>(textureCoordinates[Int(t.y)]),
+        TextureCoordinate<S>(textureCoordinates[Int(t.z)]))
+    }
+    return Triangle<S>(
+      Vector3<S>(vertices[Int(v.x)]), Vector3<S>(vertices[Int(v.y)]),
+      Vector3<S>(vertices[Int(v.z)]), vertexNormals: normals,
+      textureCoordinates: coordinates, materialIndex: materialIndex)
   }
 }

@@ -106,7 +106,7 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
     // A supersampled pixel's rays reach out to the filter's reach from its
     // centre (`PixelSamples`); 1/16 pixel more covers the rounding of
     // their screen coordinates (a few ε of a value within 2).
-    let margin = settings.samples > 1 ? settings.filter.reach + 1.0 / 16 : 0
+    let margin = settings.sampleMargin
     let limit = Double(overlapLimit) * Double(width * height)
     var spheres = TileLists<Entry>(
       tilesAcross: tilesAcross, width: width, height: height)

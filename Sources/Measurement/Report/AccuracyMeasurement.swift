@@ -185,32 +185,11 @@ package enum AccuracyRender {
     let settings = RenderSettings(
       width: width, height: height, outputs: [.depth, .normals], style: style,
       threads: threads)
-    return try! FastOptions(precision: precision, method: method).withKernel(
-      Prepared(scene: scene, settings: settings))
-  }
-
-  /// `prepared` for the kernel `FastOptions.withKernel` chose.
-  private struct Prepared: KernelBody {
-    var scene: Scene
-    var settings: RenderSettings
-
-    func run<Kernel: IntersectionKernel>(_ kernel: Kernel.Type) -> TimedRender
-    {
-      AccuracyRender.prepared(
-        kernel, scene, settings, { AnyRenderBuffers($0) })
-    }
-  }
-
-  private static func prepared<Kernel: IntersectionKernel>(
-    _: Kernel.Type, _ scene: Scene, _ settings: RenderSettings,
-    _ wrap: (RenderBuffers<Kernel.Scalar>) -> AnyRenderBuffers
-  ) -> TimedRender {
-    let compiled = CompiledScene<Kernel>(scene)
-    return TimedRender(
-      buffers: wrap(Renderer.render(compiled, settings: settings))
-    ) {
+    let compiled = FastScene(
+      scene, options: FastOptions(precision: precision, method: method))
+    return TimedRender(buffers: compiled.render(settings).buffers) {
       var clock = Stopwatch()
-      _ = Renderer.render(compiled, settings: settings)
+      _ = compiled.render(settings)
       return clock.lap()
     }
   }
@@ -236,32 +215,13 @@ package enum AccuracyRender {
     let settings = RenderSettings(
       width: width, height: height, outputs: [.depth, .normals], style: style,
       threads: threads)
-    let compiled = CompiledScene<StableKernel<R>>(scene)
-    switch precision {
-    case .float:
-      return Renderer.render(compiled, settings: settings, rays: Float.self)
-    case .double:
-      return Renderer.render(compiled, settings: settings, rays: Double.self)
-    }
+    return FastScene.reference(
+      scene, settings: settings, rays: precision, in: R.self)
   }
 }
 
-/// Render buffers of either render precision.
-package enum AnyRenderBuffers: Sendable {
-  case float(RenderBuffers<Float>)
-  case double(RenderBuffers<Double>)
-
-  /// The buffers of a Float or Double render.
-  init<S: RayScalar>(_ buffers: RenderBuffers<S>) {
-    if let buffers = buffers as? RenderBuffers<Float> {
-      self = .float(buffers)
-    } else if let buffers = buffers as? RenderBuffers<Double> {
-      self = .double(buffers)
-    } else {
-      preconditionFailure("the fast engine renders in Float or Double")
-    }
-  }
-
+/// The report's measure of either render precision's buffers.
+extension AnyRenderBuffers {
   package func measured<R: RayScalar>(
     against reference: RenderBuffers<R>
   ) -> AccuracyMeasurement {
@@ -315,14 +275,14 @@ package struct AntialiasingMeasurement: Sendable {
       width: width, height: height, outputs: [.shaded], threads: threads)
     settings.samples = samples
     settings.filter = filter
-    let compiled = CompiledScene<StableKernel<Double>>(scene)
-    var buffers = Renderer.render(compiled, settings: settings)
+    let compiled = FastScene(scene, options: FastOptions())
+    var buffers = compiled.render(settings).buffers
     var times: [Double] = []
     for _ in 0..<runs {
       var clock = Stopwatch()
-      buffers = Renderer.render(compiled, settings: settings)
+      buffers = compiled.render(settings).buffers
       times.append(clock.lap())
     }
-    return (buffers.color, runs > 0 ? median(times) : .nan)
+    return (buffers.doubles.color, runs > 0 ? median(times) : .nan)
   }
 }

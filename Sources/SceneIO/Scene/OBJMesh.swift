@@ -215,45 +215,6 @@ package struct OBJMesh: Sendable {
     }
     return result
   }
-
-  /// The mesh as model triangles in precision S, with vertex normals and
-  /// texture coordinates where the face gave them. Degenerate triangles (a
-  /// repeated vertex, a zero-area face) are kept: they are never hit, and
-  /// dropping them is the compiled scene's choice.
-  package func makeTriangles<S: RayScalar>(
-    materialIndex: Int, as _: S.Type = S.self
-  ) -> [Triangle<S>] {
-    (0..<triangleCount).map {
-      triangle(at: $0, materialIndex: materialIndex, as: S.self)
-    }
-  }
-
-  /// The model triangle of `triangles[index]`, as `makeTriangles` makes
-  /// it, for callers that store each one straight into their own array.
-  ///
-  /// - Precondition: `0 <= index < triangleCount`.
-  package func triangle<S: RayScalar>(
-    at index: Int, materialIndex: Int, as _: S.Type = S.self
-  ) -> Triangle<S> {
-    let face = face(index)
-    let v = face.vertexIndices
-    let normals = face.normalIndices.map { n in
-      Triangle<S>.VertexNormals(
-        Vector3<S>(self.normals[Int(n.x)]),
-        Vector3<S>(self.normals[Int(n.y)]),
-        Vector3<S>(self.normals[Int(n.z)]))
-    }
-    let coordinates = face.textureIndices.map { t in
-      Triangle<S>.TextureCoordinates(
-        TextureCoordinate<S>(textureCoordinates[Int(t.x)]),
-        TextureCoordinate<S>(textureCoordinates[Int(t.y)]),
-        TextureCoordinate<S>(textureCoordinates[Int(t.z)]))
-    }
-    return Triangle<S>(
-      Vector3<S>(vertices[Int(v.x)]), Vector3<S>(vertices[Int(v.y)]),
-      Vector3<S>(vertices[Int(v.z)]), vertexNormals: normals,
-      textureCoordinates: coordinates, materialIndex: materialIndex)
-  }
 }
 
 /// One triangle of an OBJ mesh: 0-based indices into `OBJMesh.vertices`
@@ -277,14 +238,14 @@ package struct OBJTriangle: Hashable, Sendable {
 
   /// Indices into `OBJMesh.normals`, or nil for a face without normals.
   @inlinable
-  package var normalIndices: SIMD3<Int32>? {
+  public var normalIndices: SIMD3<Int32>? {
     get { normalStorage.x < 0 ? nil : normalStorage }
     set { normalStorage = newValue ?? SIMD3(repeating: -1) }
   }
 
   /// Indices into `OBJMesh.textureCoordinates`, or nil.
   @inlinable
-  package var textureIndices: SIMD3<Int32>? {
+  public var textureIndices: SIMD3<Int32>? {
     get { textureStorage.x < 0 ? nil : textureStorage }
     set { textureStorage = newValue ?? SIMD3(repeating: -1) }
   }

@@ -5,10 +5,10 @@ import PlatformSupport
 
 /// A mesh file's triangles as the scene keeps them (`TriangleMesh`).
 extension TriangleMesh<Double> {
-  /// The mesh of `obj`, every triangle of material `materialIndex`, the
-  /// same triangles as `obj.smoothed(normals).makeTriangles(…)` in the same
-  /// order: where the file has no `vn` lines, a normal per vertex by the
-  /// rule (`OBJMesh.smoothed`), indexed by the vertex indices themselves.
+  /// The mesh of `obj`, every triangle of material `materialIndex`, face
+  /// by face in the file's order: where the file has no `vn` lines, a
+  /// normal per vertex by the rule (`OBJMesh.smoothed`), indexed by the
+  /// vertex indices themselves.
   init(_ obj: consuming OBJMesh, materialIndex: Int, normals rule: MeshNormals)
   {
     // The file's index arrays themselves, shared: no copy.

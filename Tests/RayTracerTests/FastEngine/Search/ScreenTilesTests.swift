@@ -113,7 +113,7 @@ final class ScreenTilesTests: XCTestCase {
   func checkRandomScenes<Kernel: IntersectionKernel>(
     _ kernel: Kernel.Type, base: UInt64
   ) {
-    forEachSeed(12, base: base) { generator, _ in
+    forEachSeed(Self.seedCount(12), base: base) { generator, _ in
       guard
         let scene = randomScene(
           &generator, count: Int.random(in: 1...120, using: &generator))
@@ -193,7 +193,7 @@ final class ScreenTilesTests: XCTestCase {
         column: Int.random(in: 0..<width, using: &generator), width: width)
       let y: Double = style.screenY(
         row: Int.random(in: 0..<height, using: &generator), height: height)
-      let direction = camera.styled(style).rayDirection(
+      let direction = styled(camera, style).rayDirection(
         x: x, y: y, aspect: aspect
       ).normalized()
       let across = direction.cross(generator.unitVector(Double.self))
@@ -215,7 +215,7 @@ final class ScreenTilesTests: XCTestCase {
   func checkBoxesHoldEveryHit<Kernel: IntersectionKernel>(
     _: Kernel.Type, base: UInt64
   ) {
-    forEachSeed(10, base: base) { generator, _ in
+    forEachSeed(Self.seedCount(10), base: base) { generator, _ in
       guard var scene = randomScene(&generator, count: 60) else { return }
       let (width, height) = (33, 27)
       for style in ImageStyle.allCases {
@@ -226,8 +226,7 @@ final class ScreenTilesTests: XCTestCase {
       }
       let compiled = CompiledScene<Kernel>(scene, projectionThreshold: 0)
       for style in ImageStyle.allCases {
-        let camera = PerspectiveCamera<Kernel.Scalar>(compiled.camera).styled(
-          style)
+        let camera = styled(compiled.camera, style)
         let projection = ScreenProjection(
           camera: PerspectiveCamera<Double>(camera), width: width,
           height: height, style: style)

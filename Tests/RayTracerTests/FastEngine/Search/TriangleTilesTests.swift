@@ -160,7 +160,7 @@ final class TriangleTilesTests: XCTestCase {
   func checkRandomScenes<Kernel: IntersectionKernel>(
     _ kernel: Kernel.Type, base: UInt64
   ) {
-    forEachSeed(12, base: base) { generator, _ in
+    forEachSeed(Self.seedCount(12), base: base) { generator, _ in
       guard let scene = randomScene(&generator) else { return }
       for style in ImageStyle.allCases {
         var cases: [RenderSettings] = []
@@ -216,18 +216,18 @@ final class TriangleTilesTests: XCTestCase {
     style: ImageStyle, width: Int, height: Int, count: Int
   ) -> [Triangle<Double>] {
     let aspect = Double(height) / Double(width)
-    let styled = camera.styled(style)
+    let view = styled(camera, style)
     return (0..<count).map { _ in
       let x: Double = style.screenX(
         column: Int.random(in: 0..<width, using: &generator), width: width)
       let y: Double = style.screenY(
         row: Int.random(in: 0..<height, using: &generator), height: height)
-      let direction = styled.rayDirection(x: x, y: y, aspect: aspect)
+      let direction = view.rayDirection(x: x, y: y, aspect: aspect)
         .normalized()
       // Screen right and up at that pixel, perpendicular to its ray, each
       // flipped at random so the corner is extreme on either side.
       let right =
-        (styled.horizontal - direction * styled.horizontal.dot(direction))
+        (view.horizontal - direction * view.horizontal.dot(direction))
         .normalized() * generator.sign()
       let up = direction.cross(right) * generator.sign()
       let distance: Double = generator.logUniform(1e-2, 1e7)
@@ -249,7 +249,7 @@ final class TriangleTilesTests: XCTestCase {
   func checkBoxesHoldEveryHit<Kernel: IntersectionKernel>(
     _: Kernel.Type, base: UInt64
   ) {
-    forEachSeed(10, base: base) { generator, _ in
+    forEachSeed(Self.seedCount(10), base: base) { generator, _ in
       guard var scene = randomScene(&generator) else { return }
       let (width, height) = (33, 27)
       for style in ImageStyle.allCases {
@@ -261,8 +261,7 @@ final class TriangleTilesTests: XCTestCase {
       let compiled = CompiledScene<Kernel>(
         scene, triangleProjectionThreshold: 0)
       for style in ImageStyle.allCases {
-        let camera = PerspectiveCamera<Kernel.Scalar>(compiled.camera).styled(
-          style)
+        let camera = styled(compiled.camera, style)
         let projection = ScreenProjection(
           camera: PerspectiveCamera<Double>(camera), width: width,
           height: height, style: style)

@@ -1,0 +1,189 @@
+import Geometry
+import Numerics
+import SceneDescription
+
+/// The fast engine behind one type that is not generic: a scene compiled
+/// for the options' precision and method, and its renders. The other
+/// targets (the pipeline, the report) hold this, so that every generic
+/// function of the engine is specialised here, in its own module, for the
+/// four kernels: called from another module, a generic function of this
+/// one runs unspecialised (a render 100 times slower).
+package struct FastScene: Sendable {
+  /// The scene's primitives, as compiled.
+  package let spheres: Int
+  package let planes: Int
+  package let triangles: Int
+  package let ellipsoids: Int
+  private let draw:
+    @Sendable (
+      RenderSettings, (@Sendable (Int) -> Void)?, consuming AnyRenderBuffers?
+    ) -> FastRender
+
+  /// Compiles `scene` with the kernel of `options`.
+  ///
+  /// - Parameter thresholds: `.render` for the thresholds a render uses
+  ///   (`FastOptions`' or the measured defaults, `supersampled` widening
+  ///   the projection's), `.compiled` for `CompiledScene`'s own defaults
+  ///   (what the report and the tests measure).
+  package init(
+    _ scene: Scene, textures: [Texture?] = [], options: FastOptions,
+    thresholds: Thresholds = .compiled
+  ) {
+    self = options.withKernel(
+      Compile(scene: scene, textures: textures, options: options,
+        thresholds: thresholds))
+  }
+
+  /// Where the compiled scene's search thresholds come from.
+  package enum Thresholds: Sendable {
+    /// A render's: no hierarchy of spheres unless projection declines;
+    /// the projection thresholds measured for one sample or several.
+    case render(supersampled: Bool)
+    /// `CompiledScene`'s defaults.
+    case compiled
+  }
+
+  /// Renders the outputs `settings` asks for, reusing `recycling`'s
+  /// arrays where they fit (a repeated render).
+  package func render(
+    _ settings: RenderSettings, progress: (@Sendable (Int) -> Void)? = nil,
+    recycling: consuming AnyRenderBuffers? = nil
+  ) -> FastRender {
+    draw(settings, progress, consume recycling)
+  }
+
+  private init<Kernel: IntersectionKernel>(_ compiled: CompiledScene<Kernel>) {
+    spheres = compiled.sphereCount
+    planes = compiled.planeCount
+    triangles = compiled.triangleCount
+    ellipsoids = compiled.ellipsoidCount
+    draw = { settings, progress, recycling in
+      // Taken out of the enum, not copied: the renderer reuses arrays
+      // only where nothing else holds them.
+      let recycled = AnyRenderBuffers.take(
+        consume recycling, as: Kernel.Scalar.self)
+      let result = Renderer.renderReportingSearch(
+        compiled, settings: settings, progress: progress,
+        recycling: consume recycled)
+      return FastRender(
+        buffers: AnyRenderBuffers(result.buffers), search: result.search,
+        triangleSearch: result.triangleSearch)
+    }
+  }
+
+  /// The compile for the kernel `FastOptions.withKernel` chose.
+  private struct Compile: KernelBody {
+    var scene: Scene
+    var textures: [Texture?]
+    var options: FastOptions
+    var thresholds: Thresholds
+
+    func run<Kernel: IntersectionKernel>(_: Kernel.Type) -> FastScene {
+      switch thresholds {
+      case .compiled:
+        return FastScene(CompiledScene<Kernel>(scene, textures: textures))
+      case .render(let supersampled):
+        // Spheres are culled per tile below the projection threshold and
+        // projected above it, a hierarchy built only where the projection
+        // declines (`Renderer.renderReportingSearch`); supersampled renders
+        // too, their tiles and boxes widened by the filter's reach.
+        return FastScene(
+          CompiledScene<Kernel>(
+            scene, textures: textures,
+            hierarchyThreshold: options.hierarchyThreshold ?? .max,
+            projectionThreshold: options.projectionThreshold
+              ?? (supersampled
+                ? CompiledScene<Kernel>.supersampledProjectionThreshold
+                : CompiledScene<Kernel>.projectionThreshold),
+            triangleProjectionThreshold: options.triangleProjectionThreshold
+              ?? CompiledScene<Kernel>.triangleProjectionThreshold))
+      }
+    }
+  }
+}
+
+/// A fast render's buffers and how it searched.
+package struct FastRender: Sendable {
+  package var buffers: AnyRenderBuffers
+  package var search: Renderer.SphereSearch
+  package var triangleSearch: Renderer.TriangleSearch
+}
+
+/// The buffers of a Float or a Double render.
+package enum AnyRenderBuffers: Sendable {
+  case float(RenderBuffers<Float>)
+  case double(RenderBuffers<Double>)
+
+  package init<S: RayScalar>(_ buffers: RenderBuffers<S>) {
+    if let buffers = buffers as? RenderBuffers<Float> {
+      self = .float(buffers)
+    } else if let buffers = buffers as? RenderBuffers<Double> {
+      self = .double(buffers)
+    } else {
+      preconditionFailure("the fast engine renders in Float or Double")
+    }
+  }
+
+  /// The buffers of `any`, if they are of precision S, moved out of it.
+  static func take<S: RayScalar>(
+    _ any: consuming AnyRenderBuffers?, as _: S.Type
+  ) -> RenderBuffers<S>? {
+    switch consume any {
+    case .float(let buffers)?: buffers as? RenderBuffers<S>
+    case .double(let buffers)?: buffers as? RenderBuffers<S>
+    case nil: nil
+    }
+  }
+
+  /// Every value widened to Double (exactly).
+  package var doubles: RenderBuffers<Double> {
+    switch self {
+    case .double(let buffers): return buffers
+    case .float(let buffers):
+      var wide = RenderBuffers<Double>(
+        width: buffers.width, height: buffers.height,
+        depth: buffers.depth.map(Double.init),
+        normals: buffers.normals.map(Vector3<Double>.init),
+        color: buffers.color.map(Vector3<Double>.init))
+      wide.normalBytes = buffers.normalBytes
+      wide.colorBytes = buffers.colorBytes
+      return wide
+    }
+  }
+}
+
+extension FastScene {
+  /// The reference of a render in `precision`: the very camera rays it
+  /// traces, intersected by the stable method in R (ReferenceScalar, or
+  /// DoubleDouble), with `CompiledScene`'s own thresholds. The references
+  /// the report and the tests use are specialised here.
+  package static func reference<R: RayScalar>(
+    _ scene: Scene, settings: RenderSettings, rays precision: Precision,
+    in _: R.Type
+  ) -> RenderBuffers<R> {
+    #if (arch(i386) || arch(x86_64)) && !os(Windows) && !os(Android)
+      if R.self == Float80.self {
+        return referenceRender(scene, settings, precision, Float80.self)
+          as! RenderBuffers<R>
+      }
+    #endif
+    if R.self == DoubleDouble.self {
+      return referenceRender(scene, settings, precision, DoubleDouble.self)
+        as! RenderBuffers<R>
+    }
+    return referenceRender(scene, settings, precision, R.self)
+  }
+
+  private static func referenceRender<R: RayScalar>(
+    _ scene: Scene, _ settings: RenderSettings, _ precision: Precision,
+    _: R.Type
+  ) -> RenderBuffers<R> {
+    let compiled = CompiledScene<StableKernel<R>>(scene)
+    switch precision {
+    case .float:
+      return Renderer.render(compiled, settings: settings, rays: Float.self)
+    case .double:
+      return Renderer.render(compiled, settings: settings, rays: Double.self)
+    }
+  }
+}
