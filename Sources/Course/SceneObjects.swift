@@ -61,7 +61,9 @@ struct SceneObjects {
     }
   }
 
-  static func triangle(_ triangle: SceneDescription.Triangle<Double>) -> Triangle {
+  static func triangle(_ triangle: SceneDescription.Triangle<Double>)
+    -> Triangle
+  {
     var result = Triangle(
       triangle.v0, triangle.v1, triangle.v2,
       materialIndex: triangle.materialIndex)

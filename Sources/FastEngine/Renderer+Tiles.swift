@@ -26,7 +26,9 @@ extension Renderer {
         let triangleEntries = tiles.triangleEntries(
           ofTileAt: start, row: rows.lowerBound)
         let tile = start..<min(start + width, settings.width)
-        if !settings.supersamples || targets.wantsDepth || targets.wantsNormals {
+        if !settings.supersamples || targets.wantsDepth
+          || targets.wantsNormals
+        {
           renderProjectedTile(
             entries, triangleEntries, columns: tile, rows: rows, columns,
             scene, camera, settings, targets)

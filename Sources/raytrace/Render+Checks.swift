@@ -82,15 +82,28 @@ extension Render {
           + "of memory; the limit is \(Self.maximumSide) pixels on a side and "
           + "\(Self.maximumPixels) pixels in all.")
     }
+  }
+
+  /// The machine's limit rather than a usage error: an image whose buffers
+  /// and files need more memory than the process may use (an address-space
+  /// limit, say), as one line for `raytrace: error:`; nil when it fits or
+  /// nothing says.
+  static func memoryLimitProblem(
+    width: Int, height: Int, files: [OutputFile]
+  ) -> String? {
+    let bytes = Double(width) * Double(height) * bytesPerPixel(files)
     // What the program takes before any image: its code, libraries,
     // threads' stacks (all counted by an address-space limit).
     let baseline = 384.0 * 1_048_576
-    if let limit = Memory.limits().first, bytes + baseline > Double(limit.bytes) {
-      throw ValidationError(
-        "--size \(width) \(height) would need about \(gib(bytes + baseline)) "
-          + "of memory for these outputs, and the process may use at most "
-          + "\(gib(Double(limit.bytes))) (\(limit.what)).")
+    guard let limit = Memory.limits().first,
+      bytes + baseline > Double(limit.bytes)
+    else { return nil }
+    let gib = { (bytes: Double) in
+      "\(formatted(bytes / 1_073_741_824, digits: 3)) GiB"
     }
+    return "--size \(width) \(height) would need about "
+      + "\(gib(bytes + baseline)) of memory for these outputs, and the "
+      + "process may use at most \(gib(Double(limit.bytes))) (\(limit.what))."
   }
 
   /// The memory a pixel takes, at most: the engine's buffers in Double

@@ -343,6 +343,15 @@ struct Render: ParsableCommand {
     // removes the temporary outputs, whenever it comes.
     AtomicFile.installInterruptCleanup()
     let plan = try plan()
+    // The machine's limit, not a mistake in the command line: one line,
+    // status 1, before anything is read or allocated.
+    if let problem = Self.memoryLimitProblem(
+      width: plan.settings.width, height: plan.settings.height,
+      files: plan.files)
+    {
+      printError("raytrace: error: \(problem)")
+      throw ExitCode.failure
+    }
     // Starts a dispatch worker thread while the scene is read, so that the
     // render's second thread is running when it is handed rows: created on
     // demand, it sometimes started 2–4 ms late, a third of a small render.

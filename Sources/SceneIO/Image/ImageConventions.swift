@@ -52,7 +52,9 @@ extension ImageStyle {
   }
 
   /// Course: |n| per component, misses black. Mit: (n + 1)/2, misses grey.
-  package func normalImage<S: RayScalar>(_ buffers: RenderBuffers<S>) -> Image8 {
+  package func normalImage<S: RayScalar>(_ buffers: RenderBuffers<S>)
+    -> Image8
+  {
     if !buffers.normalBytes.isEmpty {
       return Image8(
         width: buffers.width, height: buffers.height,

@@ -67,6 +67,14 @@ extension OBJParser {
     let y = try coordinate("the y coordinate", of: "vn")
     let z = try coordinate("the z coordinate", of: "vn")
     try endOfLine(after: "vn x y z")
+    // A zero normal has no direction: interpolated alone it would shade
+    // and draw NaN.
+    guard x != 0 || y != 0 || z != 0 else {
+      throw error(
+        at: keyword,
+        "a normal of zero length has no direction: 'vn' needs a component "
+          + "other than zero")
+    }
     mesh.normals.append(Vector3(x, y, z))
   }
 

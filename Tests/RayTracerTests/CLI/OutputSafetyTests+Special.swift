@@ -124,7 +124,8 @@ extension OutputSafetyTests {
 
   /// An image whose buffers cannot fit in what the process may use (here
   /// an address-space limit of 1.5 GiB) is refused before anything is
-  /// allocated or created, with what it needs and the limit.
+  /// allocated or created, with what it needs and the limit: the machine's
+  /// limit, one line and status 1, not a usage error (64 and the usage).
   func testMemoryLimit_RefusedBeforeAnyWork() throws {
     let outcome = try run(
       [
@@ -132,7 +133,9 @@ extension OutputSafetyTests {
         folder + "/d.npy", "--normals", folder + "/n.npy", "-o",
         folder + "/c.npy",
       ], shell: "ulimit -v 1572864;")
-    XCTAssertEqual(outcome.status, 64)
+    XCTAssertEqual(outcome.status, 1)
+    XCTAssertFalse(outcome.stderr.contains("USAGE"), outcome.stderr)
+    XCTAssertTrue(outcome.stderr.hasPrefix("raytrace: error: "), outcome.stderr)
     XCTAssertTrue(
       outcome.stderr.contains(
         "would need about 7.38 GiB of memory for these outputs, and the "

@@ -52,7 +52,8 @@ final class ShapeHierarchyTests: XCTestCase {
         Double.random(in: -10...0, using: &generator))
       balls.append(
         Ball(
-          center: center, radius: Double.random(in: 0.05...0.3, using: &generator)))
+          center: center,
+          radius: Double.random(in: 0.05...0.3, using: &generator)))
     }
     let camera = try XCTUnwrap(
       PerspectiveCamera<Double>(

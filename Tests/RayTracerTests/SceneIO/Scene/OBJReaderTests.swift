@@ -345,6 +345,12 @@ final class OBJReaderTests: XCTestCase {
         name: "long normal", text: "vn 1 2 3 4", line: 1, column: 10,
         message: "unexpected '4' after 'vn x y z'"),
       Malformed(
+        name: "zero normal", text: "v 0 0 0\nvn 0.0 -0 0e5", line: 2,
+        column: 1,
+        message:
+          "a normal of zero length has no direction: 'vn' needs a "
+          + "component other than zero"),
+      Malformed(
         name: "empty texture coordinate", text: "vt", line: 1, column: 3,
         message: "expected the u coordinate of 'vt', found end of line"),
       Malformed(
