@@ -114,24 +114,31 @@ package enum AnyRenderBuffers: Sendable {
   case float(RenderBuffers<Float>)
   case double(RenderBuffers<Double>)
 
-  package init<S: RayScalar>(_ buffers: RenderBuffers<S>) {
-    if let buffers = buffers as? RenderBuffers<Float> {
-      self = .float(buffers)
-    } else if let buffers = buffers as? RenderBuffers<Double> {
-      self = .double(buffers)
+  /// No dynamic cast: the type test folds away once S is known, and a
+  /// cast of a generic struct asks the runtime (measured: a scan of the
+  /// conformances inside the timed render).
+  @inline(__always)
+  package init<S: RayScalar>(_ buffers: consuming RenderBuffers<S>) {
+    if S.self == Float.self {
+      self = .float(unsafeBitCast(buffers, to: RenderBuffers<Float>.self))
+    } else if S.self == Double.self {
+      self = .double(unsafeBitCast(buffers, to: RenderBuffers<Double>.self))
     } else {
       preconditionFailure("the fast engine renders in Float or Double")
     }
   }
 
   /// The buffers of `any`, if they are of precision S, moved out of it.
+  @inline(__always)
   static func take<S: RayScalar>(
     _ any: consuming AnyRenderBuffers?, as _: S.Type
   ) -> RenderBuffers<S>? {
     switch consume any {
-    case .float(let buffers)?: buffers as? RenderBuffers<S>
-    case .double(let buffers)?: buffers as? RenderBuffers<S>
-    case nil: nil
+    case .float(let buffers)? where S.self == Float.self:
+      unsafeBitCast(buffers, to: RenderBuffers<S>.self)
+    case .double(let buffers)? where S.self == Double.self:
+      unsafeBitCast(buffers, to: RenderBuffers<S>.self)
+    default: nil
     }
   }
 
