@@ -3,7 +3,7 @@ import SceneDescription
 import Numerics
 
 /// What the fast engine hits along one ray from the eye, object by object
-/// of the scene's group: how `raytrace SCENE --check` names the object the
+/// of the scene's group: how the engines' check names the object the
 /// fast engine's pixel shows, from its own hits.
 extension CompiledScene {
   /// Each object of `scene`'s group that the ray from the eye in

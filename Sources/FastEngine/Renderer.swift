@@ -25,7 +25,7 @@ package enum Renderer {
     /// The course engine: every object of the group by the hit protocol.
     case everyObject
 
-    /// In words for `--stats`.
+    /// In words, for a render's report.
     package var description: String {
       switch self {
       case .everySphere: "testing each"
@@ -41,7 +41,7 @@ package enum Renderer {
   package enum TriangleSearch: Sendable, Equatable, CustomStringConvertible {
     case everyTriangle, hierarchy, screenTiles
 
-    /// In words for `--stats`.
+    /// In words, for a render's report.
     package var description: String {
       switch self {
       case .everyTriangle: "testing each"

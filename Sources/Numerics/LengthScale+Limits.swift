@@ -24,6 +24,8 @@ extension LengthScale {
   /// from it, so an eye at 1e14 beside a unit sphere, or at 1e300 beside
   /// a speck of 1e-300 (double), is judged as the same scene with the eye
   /// at the origin (`frame` moves such scenes to the eye before scaling).
+  ///
+  /// What would hold the scene is `precision.remedy`.
   public static func problem(_ scene: Scene, precision: Precision)
     -> String?
   {
@@ -35,20 +37,19 @@ extension LengthScale {
     }
     var extent = Extent(eye: scene.camera.center)
     extent.measure(.group(scene.root))
-    let advice = precision == .float ? "; use --precision double" : ""
     if let failure = firstFailure(
       in: scene, extent, smallest: precision.smallestNormal,
       commonScale: scale, ownScale: scale)
     {
       return "\(failure.what) for \(precision.rawValue): with that length "
         + "scaled to about 1, \(failure.measure) is below "
-        + "\(precision.rawValue)'s normal range" + advice
+        + "\(precision.rawValue)'s normal range"
     }
     return tooFarForItsAxes(
       scene, extent, smallest: precision.smallestNormal
     ).map {
       "\($0.what) for \(precision.rawValue): \($0.measure) is below "
-        + "\(precision.rawValue)'s normal range at any scale" + advice
+        + "\(precision.rawValue)'s normal range at any scale"
     }
   }
 
@@ -87,7 +88,8 @@ extension LengthScale {
   /// `problem` judges them at its own scale: a sphere of radius 1e-200,
   /// wherever the eye is), or whose products with its distance from the
   /// eye overflow (`tooLargeUnscaled`: a sphere 1e200 from the eye). Every
-  /// scene `problem` refuses in double is refused here too.
+  /// scene `problem` refuses in double is refused here too. The remedy is
+  /// the fast engine (`Remedy.fastEngine`).
   public static func unscaledProblem(_ scene: Scene) -> String? {
     let eye = scene.camera.center
     var extent = Extent(eye: eye)
@@ -111,7 +113,7 @@ extension LengthScale {
         + "cannot draw \($0.object): \($0.measure) is "
         + (large != nil
           ? "beyond double's range" : "below double's normal range")
-        + "; use --engine fast"
+
     }
   }
 

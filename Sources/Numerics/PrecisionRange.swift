@@ -50,8 +50,8 @@ extension Precision {
   /// reading made of `text`: infinite beyond Double's range, 0 below it,
   /// so `text` tells a written zero from one that underflowed.
   ///
-  /// The message names the text, the precision and its limit, and for
-  /// Float suggests `--precision double`.
+  /// The message names the text, the precision and its limit; `remedy`
+  /// says what would hold it.
   public func rangeProblem(_ value: Double, text: String) -> String? {
     let overflows =
       value.isInfinite || self == .float && Float(value).isInfinite
@@ -74,7 +74,7 @@ extension Precision {
     } else {
       return nil
     }
-    return self == .float ? problem + "; use --precision double" : problem
+    return problem
   }
 
   /// Whether `value` rounds to a finite number in this precision.
@@ -87,7 +87,7 @@ extension Precision {
   /// moves) that leaves the precision's finite range.
   public func overflowSuffix() -> String {
     self == .float
-      ? "beyond the finite range of float; use --precision double"
+      ? "beyond the finite range of float"
       : "beyond the finite range of double"
   }
 

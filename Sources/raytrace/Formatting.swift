@@ -97,3 +97,21 @@ func listTextFiles(in folder: String) -> [String] {
   }
   return names.sorted()
 }
+
+/// The executable's words for a remedy: its own options.
+extension Remedy {
+  var advice: String {
+    switch self {
+    case .doublePrecision: "use --precision double"
+    case .fastEngine: "use --engine fast"
+    }
+  }
+}
+
+extension SceneError {
+  /// The error as the command line reports it: the message, then the
+  /// remedy in the command line's own options.
+  var report: String {
+    description + (remedy.map { "; " + $0.advice } ?? "")
+  }
+}

@@ -26,7 +26,7 @@ extension Render {
     do {
       textures = try TextureLoader.load(for: scene)
     } catch {
-      printError(error.description)
+      printError(error.report)
       throw ExitCode.failure
     }
     let settings = request.settings

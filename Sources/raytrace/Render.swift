@@ -233,21 +233,26 @@ struct Render: ParsableCommand {
           style: plan.settings.style, precision: plan.request.fast.precision,
           shapes: CourseShapes.all))
     } catch {
-      printError(error.description)
+      printError(error.report)
       throw ExitCode.failure
     }
     let parseSeconds = clock.lap()
     // What the fast engine cannot hold at any scale it traces at, and,
     // when the course engine renders, what its own lengths cannot.
     let usesCourse = plan.request.engine == .course || check
-    if let problem = LengthScale.problem(
-      scene, precision: plan.request.fast.precision)
-      ?? (usesCourse ? LengthScale.unscaledProblem(scene) : nil)
-    {
+    let precision = plan.request.fast.precision
+    let problem: (String, Remedy?)? =
+      LengthScale.problem(scene, precision: precision).map {
+        ($0, precision.remedy)
+      }
+      ?? (usesCourse
+        ? LengthScale.unscaledProblem(scene).map { ($0, .fastEngine) } : nil)
+    if let (message, remedy) = problem {
       printError(
         SceneError(
-          file: plan.scenePath, line: 0, column: 0, message: problem
-        ).description)
+          file: plan.scenePath, line: 0, column: 0, message: message,
+          remedy: remedy
+        ).report)
       throw ExitCode.failure
     }
     try checkOutputs(plan.files, against: scene)
@@ -276,7 +281,7 @@ struct Render: ParsableCommand {
         depthRange: plan.depthRange, png: png, progress: progress)
     } catch let error as SceneError {
       // A texture that cannot be read, named as a scene error is.
-      printError(error.description)
+      printError(error.report)
       throw ExitCode.failure
     } catch {
       printError("raytrace: error: \(error)")

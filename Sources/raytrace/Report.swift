@@ -143,7 +143,7 @@ struct Report: ParsableCommand {
           contentsOf: path,
           options: SceneOptions(style: .course, shapes: CourseShapes.all))
       } catch {
-        printError(error.description)
+        printError(error.report)
         throw ExitCode.failure
       }
       for precision in Precision.allCases {
@@ -216,7 +216,7 @@ struct Report: ParsableCommand {
           contentsOf: path,
           options: SceneOptions(style: .course, shapes: CourseShapes.all))
         } catch {
-          printError(error.description)
+          printError(error.report)
           throw ExitCode.failure
         }
         // Half the size: the 1024-sample reference is a thousand renders.

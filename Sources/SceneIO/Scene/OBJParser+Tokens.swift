@@ -33,6 +33,7 @@ extension OBJParser {
       let problem = precision.rangeProblem(value, text: quote(token))
     {
       throw error(at: token, "\(name) of '\(statement)': \(problem)")
+        .with(precision.remedy)
     }
     guard value.isFinite else {
       throw error(

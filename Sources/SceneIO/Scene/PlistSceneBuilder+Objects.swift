@@ -140,11 +140,13 @@ extension PlistSceneBuilder {
     }
     if let problem = SceneParser.matrixProblem(transform, options.precision) {
       throw fail("\(path).transforms", problem)
+        .with(options.precision.remedy)
     }
     if openTransforms == 0
       && !SceneParser.movedGeometryIsFinite(transform, options.precision)
     {
       throw fail(path, SceneParser.movedGeometryMessage(options.precision))
+        .with(options.precision.remedy)
     }
     return transform
   }

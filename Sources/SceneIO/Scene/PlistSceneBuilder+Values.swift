@@ -232,7 +232,7 @@ extension PlistSceneBuilder {
     guard !options.precision.holds(value),
       let problem = options.precision.rangeProblem(value, text: text)
     else { return }
-    throw fail(path, problem)
+    throw fail(path, problem).with(options.precision.remedy)
   }
 
   func required<T>(

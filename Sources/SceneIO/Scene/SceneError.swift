@@ -12,12 +12,26 @@ package struct SceneError: Error, Equatable, CustomStringConvertible, Sendable {
   /// 1-based column in bytes (the format is ASCII).
   package var column: Int
   package var message: String
+  /// What would hold the scene, when the problem is a precision's range
+  /// or an engine's; the executable words it after the message.
+  package var remedy: Remedy?
 
-  package init(file: String, line: Int, column: Int, message: String) {
+  package init(
+    file: String, line: Int, column: Int, message: String,
+    remedy: Remedy? = nil
+  ) {
     self.file = file
     self.line = line
     self.column = column
     self.message = message
+    self.remedy = remedy
+  }
+
+  /// The error with `remedy`.
+  package func with(_ remedy: Remedy?) -> SceneError {
+    var error = self
+    error.remedy = remedy
+    return error
   }
 
   /// `FILE:LINE:COLUMN: error: …`; without a column (a property list's

@@ -85,10 +85,11 @@ extension SceneParser {
       if !value.isFinite && !Precision.isDecimal(written) {
         throw error(at: token, "expected a finite number, found '\(written)'")
       }
-      throw error(
-        at: token,
-        options.precision.rangeProblem(value, text: written)
-          ?? "expected a finite number, found '\(written)'")
+      guard let problem = options.precision.rangeProblem(value, text: written)
+      else {
+        throw error(at: token, "expected a finite number, found '\(written)'")
+      }
+      throw error(at: token, problem).with(options.precision.remedy)
     }
     return (value, token)
   }

@@ -183,7 +183,7 @@ extension SceneParser {
             at: start, "the Transform's matrix has no inverse (a scale of 0?)")
         }
         if let problem = Self.matrixProblem(transform, options.precision) {
-          throw error(at: start, problem)
+          throw error(at: start, problem).with(options.precision.remedy)
         }
         if openTransforms == 1 {
           try checkMovedGeometry(transform, start)

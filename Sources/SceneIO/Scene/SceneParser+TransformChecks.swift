@@ -17,6 +17,7 @@ extension SceneParser {
   ) throws(SceneError) {
     guard Self.movedGeometryIsFinite(transform, options.precision) else {
       throw error(at: start, Self.movedGeometryMessage(options.precision))
+        .with(options.precision.remedy)
     }
   }
 
@@ -28,7 +29,7 @@ extension SceneParser {
     case .float:
       "the Transform takes its object beyond float's range: a coordinate, "
         + "offset or normal is no longer finite, or a radius becomes 0 or "
-        + "subnormal; use --precision double"
+        + "subnormal"
     }
   }
 

@@ -232,9 +232,7 @@ final class StiffSuiteTests: XCTestCase {
         XCTAssertFalse(Self.doubleOnly.contains(name), name)
       } catch {
         XCTAssertTrue(Self.doubleOnly.contains(name), "\(name): \(error)")
-        XCTAssertTrue(
-          error.description.hasSuffix("; use --precision double"),
-          error.description)
+        XCTAssertEqual(error.remedy, .doublePrecision, error.description)
       }
     }
   }

@@ -39,7 +39,7 @@ extension LengthScaleEyeTests {
         "a sphere of radius 1e-25 (centre \(x) 0.0 -3.0) is too small "
           + "beside its distance from the eye (3.0) for float: with that "
           + "length scaled to about 1, its radius squared is below float's "
-          + "normal range; use --precision double")
+          + "normal range")
       XCTAssertNil(
         LengthScale.problem(
           try sphere(eye: x, radius: 1e-25, at: 3e-25), precision: .float),
@@ -86,7 +86,7 @@ extension LengthScaleEyeTests {
         + "99999999999996.0, 0.0 1e-25 99999999999996.0) is too small beside "
         + "its distance from the eye (up to 4.0) for float: with that length "
         + "scaled to about 1, its longest edge (2.2360679774997897e-25) "
-        + "squared is below float's normal range; use --precision double")
+        + "squared is below float's normal range")
     XCTAssertNil(
       LengthScale.problem(
         try triangle(Vector3(0, -1e-25, z - 4)), precision: .float),
@@ -104,7 +104,7 @@ extension LengthScaleEyeTests {
       "a transformed sphere whose shortest axis is 1e-25 is too small beside "
         + "its distance from the eye (4.0) for float: with that length "
         + "scaled to about 1, its shortest axis squared is below float's "
-        + "normal range; use --precision double")
+        + "normal range")
   }
 
   /// The course engine computes with the scene's own lengths: what it
@@ -116,8 +116,7 @@ extension LengthScaleEyeTests {
       LengthScale.unscaledProblem(speck),
       "the course engine, which computes with the scene's own lengths, "
         + "cannot draw a sphere of radius 1e-200 (centre 1.0 0.0 -3e-200): "
-        + "its radius squared is below double's normal range; use --engine "
-        + "fast")
+        + "its radius squared is below double's normal range")
     let far = try sphere(eye: 0, radius: 1e200, at: 3e200)
     XCTAssertNil(LengthScale.problem(far, precision: .double))
     XCTAssertEqual(
@@ -125,7 +124,7 @@ extension LengthScaleEyeTests {
       "the course engine, which computes with the scene's own lengths, "
         + "cannot draw a sphere of radius 1e+200 (centre 0.0 0.0 -3e+200): "
         + "the square of its distance from the eye (3e+200) is beyond "
-        + "double's range; use --engine fast")
+        + "double's range")
     // Its eye in its own space 10¹⁶⁰ radii away: |M⁻¹·o|² overflows.
     let thin = try scene(
       eye: 0,
@@ -148,7 +147,7 @@ extension LengthScaleEyeTests {
       "the course engine, which computes with the scene's own lengths, "
         + "cannot draw a transformed sphere whose shortest axis is 1e-100: "
         + "the square of its reach from the eye (1e+60 on an axis) over its "
-        + "shortest axis is beyond double's range; use --engine fast")
+        + "shortest axis is beyond double's range")
     // An eye far from the origin is no problem for Double's own lengths.
     XCTAssertNil(
       LengthScale.unscaledProblem(try Self.view(eye: 1e14, scale: 1)))

@@ -107,7 +107,7 @@ final class LengthScaleTests: XCTestCase {
       "a sphere of radius 1e-25 (centre 0.0 0.0 0.0) is too small beside "
         + "its distance from the eye (3.0) for float: with that length "
         + "scaled to about 1, its radius squared is below float's normal "
-        + "range; use --precision double")
+        + "range")
     XCTAssertNil(LengthScale.problem(scene(1e-25), precision: .double))
     XCTAssertNil(LengthScale.problem(scene(1e-15), precision: .float))
     XCTAssertNotNil(LengthScale.problem(scene(1e-160), precision: .double))
@@ -154,7 +154,7 @@ final class LengthScaleTests: XCTestCase {
         + "1e-25 -3.0) is too small beside its distance from the eye (up to "
         + "3.0) for float: with that length scaled to about 1, its longest "
         + "edge (2.2360679774997897e-25) squared is below float's normal "
-        + "range; use --precision double")
+        + "range")
     XCTAssertNil(
       LengthScale.problem(
         scene(triangle(1e-25, at: -3)), precision: .double))

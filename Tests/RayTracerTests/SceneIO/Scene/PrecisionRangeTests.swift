@@ -4,6 +4,7 @@ import XCTest
 @testable import FastEngine
 @testable import Measurement
 @testable import SceneIO
+@testable import raytrace
 @testable import Geometry
 @testable import SceneDescription
 @testable import Numerics
@@ -31,8 +32,9 @@ final class PrecisionRangeTests: XCTestCase {
         options: SceneOptions(style: .course, precision: precision))
       XCTFail("parsed without error", file: file, line: testLine)
     } catch {
+      // As the command line reports it: the remedy in its own options.
       XCTAssertEqual(
-        error.description, "test.txt:\(line):\(column): error: \(message)",
+        error.report, "test.txt:\(line):\(column): error: \(message)",
         file: file, line: testLine)
     }
   }
@@ -164,7 +166,7 @@ final class PrecisionRangeTests: XCTestCase {
         precision: .float)
     ) { error in
       XCTAssertEqual(
-        (error as? SceneError)?.description,
+        (error as? SceneError)?.report,
         "m.obj:3:5: error: the y coordinate of 'v': '1e39' is beyond the "
           + "finite range of float (±3.4028235e+38); use --precision double")
     }
@@ -190,7 +192,7 @@ final class PrecisionRangeTests: XCTestCase {
         options: SceneOptions(style: .course, precision: .float))
     ) { error in
       XCTAssertEqual(
-        (error as? SceneError)?.description,
+        (error as? SceneError)?.report,
         "C08_C.plist: error: Group[0].radius: '1e-45' rounds to a subnormal "
           + "number in float (its smallest normal number is 1.1754944e-38); "
           + "use --precision double")
