@@ -119,10 +119,52 @@ final class ShapeHierarchyTests: XCTestCase {
         + "\(sphereSeconds) s (×\(shapeSeconds / sphereSeconds))")
   }
 
+  /// A shape without a bound (a plane of one's own): hit anywhere.
+  struct Floor: Hittable {
+    func intersect(
+      _ ray: Ray<Double>, after tMin: Double, before tMax: Double
+    ) -> Hit<Double>? {
+      let t = (-5 - ray.origin.y) / ray.direction.y
+      guard tMin < t && t < tMax else { return nil }
+      return Hit(t: t, normal: Vector3(0, 1, 0), materialIndex: 0)
+    }
+
+    var boundingBox: BoundingBox? { nil }
+  }
+
   /// A single shape, and shapes without a bound, are tested without a
-  /// hierarchy.
+  /// hierarchy; with both kinds, the bounded ones are in the hierarchy and
+  /// the others after them, and a ray that misses every bounded shape
+  /// still meets the unbounded one.
   func testFewOrUnboundedShapes_NoHierarchy() throws {
     let (_, one) = try scenes(count: 1)
     XCTAssertNil(CompiledScene<StableKernel<Double>>(one).shapeHierarchy)
+    var floors = one
+    floors.root = Group([.shape(Shape(Floor())), .shape(Shape(Floor()))])
+    let unbounded = CompiledScene<StableKernel<Double>>(floors)
+    XCTAssertNil(unbounded.shapeHierarchy)
+    XCTAssertEqual(unbounded.boundedShapeCount, 0)
+
+    let (_, balls) = try scenes(count: 20)
+    var mixed = balls
+    mixed.root = Group([.shape(Shape(Floor()))] + balls.root.objects)
+    let compiled = CompiledScene<StableKernel<Double>>(mixed)
+    XCTAssertNotNil(compiled.shapeHierarchy)
+    XCTAssertEqual(compiled.boundedShapeCount, 20)
+    XCTAssertNil(compiled.shapeBoxes.last!)
+    // Straight down from (0, 100, 12), in front of every ball (they lie
+    // at z ≤ 0): the ray misses the hierarchy and meets the floor at
+    // y = −5, 105 below.
+    // One pixel of the mit style: its ray is the view direction itself.
+    let settings = RenderSettings(
+      width: 1, height: 1, outputs: [.depth], style: .mit, threads: 1)
+    var down = mixed
+    down.camera = try XCTUnwrap(
+      PerspectiveCamera<Double>(
+        center: Vector3(0, 100, 12), direction: Vector3(0, -1, 0),
+        up: Vector3(0, 0, -1), angle: 1))
+    let depth = Renderer.render(
+      CompiledScene<StableKernel<Double>>(down), settings: settings).depth
+    XCTAssertEqual(depth[0], 105, accuracy: 1e-9)
   }
 }
