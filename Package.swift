@@ -182,7 +182,7 @@ let package = Package(
     .target(
       name: "Measurement",
       dependencies: [
-        "Geometry", "SceneDescription", "Numerics", "PlatformSupport", "SceneIO",
+        "Course", "Geometry", "SceneDescription", "Numerics", "PlatformSupport", "SceneIO",
         "FastEngine", "Pipeline", realModule,
       ]
     ),

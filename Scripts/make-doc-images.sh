@@ -33,10 +33,12 @@ done
 "$rt" scenes/stiff/planet-1e9.txt --size 400 300 --precision float \
   -o "$out/planet-1e9.png"
 
-# Error heatmaps from the accuracy report (docs/ACCURACY.md).
+# The accuracy report with its default options (a few minutes): error
+# against run time as a picture (README.md) and error heatmaps
+# (docs/ACCURACY.md).
 heatmaps=$(mktemp -d)
 trap 'rm -rf "$heatmaps"' EXIT
-"$rt" report --heatmaps "$heatmaps" --runs 1 --skip-antialiasing >/dev/null
+"$rt" report --heatmaps "$heatmaps" --plot "$out/error-vs-time.svg" >/dev/null
 for name in far-sphere-1e6-double-naive far-sphere-1e6-double-stable \
   planet-1e9-float-naive planet-1e9-float-stable; do
   cp "$heatmaps/$name.png" "$out/heatmap-$name.png"

@@ -45,7 +45,7 @@ struct Report: ParsableCommand {
   var size: [Int] = [400, 400]
 
   @Option(help: "Timed renders per round and row, after one warm-up.")
-  var runs: Int = 5
+  var runs: Int = 11
 
   @Option(
     help: """
@@ -54,8 +54,18 @@ struct Report: ParsableCommand {
       """)
   var rounds: Int = 3
 
-  @Option(help: "Worker threads for the timed renders (default: all cores).")
-  var threads: Int?
+  @Option(
+    help: """
+      Worker threads for the timed renders (default: 1; more threads add \
+      their start and join to renders of a few milliseconds).
+      """)
+  var threads: Int = 1
+
+  @Option(
+    help: ArgumentHelp(
+      "Also draw error against run time (and antialiasing) as an SVG file.",
+      valueName: "file.svg"))
+  var plot: String?
 
   @Option(
     help: ArgumentHelp(
@@ -84,14 +94,6 @@ struct Report: ParsableCommand {
   )
   var skipAntialiasing = false
 
-  private var antialiasingHeader: String {
-    """
-    | scene | size | samples | time (ms) | RMS error vs 1024 samples \
-    | max error (levels) |
-    |---|---|---:|---:|---:|---:|
-    """
-  }
-
   static let defaultScenes = [
     "scenes/spheres.txt", "scenes/spheres-only.txt", "scenes/single-sphere.txt",
   ]
@@ -105,7 +107,7 @@ struct Report: ParsableCommand {
     guard rounds >= 1 else {
       throw ValidationError("--rounds must be at least 1.")
     }
-    if let threads, threads < 1 {
+    if threads < 1 {
       throw ValidationError("--threads must be at least 1.")
     }
     guard reference.isAvailable else {
@@ -116,36 +118,36 @@ struct Report: ParsableCommand {
 
   func run() throws {
     let paths = scenes.isEmpty ? try defaultScenePaths() : scenes
-    let (width, height) = (size[0], size[1])
-    let threads = threads ?? Platform.availableCores
-    var rows: [AccuracyRow] = []
-    var encodedMaps: [(bytes: [UInt8], path: String)] = []
+    if !BuildKind.isOptimized {
+      printError(
+        "raytrace: warning: a debug build: its times are not representative "
+          + "(the fast engine runs unoptimised); time with `swift build -c "
+          + "release` and .build/release/raytrace report")
+    }
+    let timing = AccuracyRow.Timing(
+      width: size[0], height: size[1], threads: threads, runs: runs,
+      rounds: rounds)
     if let heatmaps {
       try checkOutputFolder(heatmaps)
     }
-    if let csv {
+    for (option, file) in [("--csv", csv), ("--plot", plot)] {
+      guard let file else { continue }
       // Never over what this run reads.
-      for path in paths where FileIdentity.same(csv, path) {
+      for path in paths where FileIdentity.same(file, path) {
         throw ValidationError(
-          "--csv '\(SceneParser.escaped(csv))' would overwrite the scene "
-            + "file '\(SceneParser.escaped(path))'.")
+          "\(option) '\(SceneParser.escaped(file))' would overwrite the "
+            + "scene file '\(SceneParser.escaped(path))'.")
       }
-      try checked { () throws(OutputError) in try AtomicFile.checkWritable(csv)
+      try checked { () throws(OutputError) in
+        try AtomicFile.checkWritable(file)
       }
     }
+    var rows: [AccuracyRow] = []
+    var encodedMaps: [(bytes: [UInt8], path: String)] = []
     let names = Self.distinctNames(paths.map(sceneName))
     printOutput(AccuracyRow.markdownHeader)
     for (path, name) in zip(paths, names) {
-      let scene: Scene
-      do {
-        // Either format, by content, as `render` reads it.
-        scene = try SceneReader.read(
-          contentsOf: path,
-          options: SceneOptions(style: .course, shapes: CourseShapes.all))
-      } catch {
-        printError(error.report)
-        throw ExitCode.failure
-      }
+      let scene = try read(path)
       for precision in Precision.allCases {
         // A scene whose numbers the precision cannot hold (the stiff
         // suite's double-only scenes) has no row in it: the renderer
@@ -157,84 +159,37 @@ struct Report: ParsableCommand {
             (try? SceneReader.read(contentsOf: path, options: options)) != nil
           else { continue }
         }
-        // Generic over the reference's scalar, chosen by --reference.
-        func measureRows<R: RayScalar>(against reference: RenderBuffers<R>) {
-          let renders = AccuracyRender.renderMethods(
-            scene, width: width, height: height, precision: precision,
-            threads: threads, runs: runs, rounds: rounds)
-          let naiveSeconds =
-            renders.first { $0.method == .naive }?.seconds ?? .nan
-          for (method, buffers, seconds) in renders {
-            let measurement = buffers.measured(against: reference)
-            let row = AccuracyRow(
-              scene: name, precision: precision, method: method,
-              width: width, height: height, seconds: seconds,
-              naiveSeconds: naiveSeconds, measurement: measurement,
-              epsilon: buffers.epsilon)
-            printOutput(row.markdown)
-            rows.append(row)
-            if let heatmaps {
-              let image = ErrorHeatmap.image(
-                measurement, width: width, height: height,
-                epsilon: buffers.epsilon)
-              encodedMaps.append(
-                (
-                  PNGEncoder.encode(image),
-                  "\(heatmaps)/\(name)-\(precision.rawValue)-"
-                    + "\(method.rawValue).png"
-                ))
-            }
+        for row in AccuracyRow.measure(
+          scene, name: name, precision: precision, reference: reference,
+          timing: timing)
+        {
+          printOutput(row.markdown)
+          rows.append(row)
+          if let heatmaps {
+            let image = ErrorHeatmap.image(
+              row.measurement, width: row.width, height: row.height,
+              epsilon: row.epsilon)
+            encodedMaps.append(
+              (
+                PNGEncoder.encode(image),
+                "\(heatmaps)/\(name)-\(precision.rawValue)-"
+                  + "\(row.method.name).png"
+              ))
           }
-        }
-        func referenceBuffers<R: RayScalar>(
-          in _: R.Type
-        ) -> RenderBuffers<R> {
-          AccuracyRender.reference(
-            scene, width: width, height: height, rays: precision,
-            threads: threads, in: R.self)
-        }
-        switch reference {
-        case .doubleDouble:
-          measureRows(against: referenceBuffers(in: DoubleDouble.self))
-        case .float80:
-          #if (arch(i386) || arch(x86_64)) && !os(Windows) && !os(Android)
-            measureRows(against: referenceBuffers(in: Float80.self))
-          #else
-            preconditionFailure("refused by validate()")
-          #endif
         }
       }
     }
+    var antialiasing: [AntialiasingRow] = []
     if !skipAntialiasing {
       printOutput()
-      printOutput(antialiasingHeader)
+      printOutput(AntialiasingRow.markdownHeader)
       for path in scenes.isEmpty ? Self.defaultScenes : paths {
-        let scene: Scene
-        do {
-          // Either format, by content, as `render` reads it.
-        scene = try SceneReader.read(
-          contentsOf: path,
-          options: SceneOptions(style: .course, shapes: CourseShapes.all))
-        } catch {
-          printError(error.report)
-          throw ExitCode.failure
-        }
         // Half the size: the 1024-sample reference is a thousand renders.
-        let (w, h) = (max(1, width / 2), max(1, height / 2))
-        let (reference, _) = AntialiasingMeasurement.render(
-          scene, width: w, height: h, samples: 1024, threads: threads, runs: 0)
-        for samples in [1, 4, 16, 64] {
-          let (color, seconds) = AntialiasingMeasurement.render(
-            scene, width: w, height: h, samples: samples, threads: threads,
-            runs: runs)
-          let m = AntialiasingMeasurement(color, against: reference)
-          printOutput(
-            "| \(sceneName(path)) | \(w)×\(h) | \(samples) | "
-              + "\(formatted(seconds * 1000, digits: 3)) | "
-              + "\(scientific(m.rootMeanSquare)) | "
-              + "\(formatted(m.maxLevels, digits: 3)) |"
-          )
-        }
+        let more = AntialiasingRow.measure(
+          try read(path), name: sceneName(path), width: max(1, size[0] / 2),
+          height: max(1, size[1] / 2), threads: threads, runs: runs)
+        for row in more { printOutput(row.markdown) }
+        antialiasing += more
       }
     }
     if let csv {
@@ -245,11 +200,30 @@ struct Report: ParsableCommand {
         try AtomicFile.write(Array(text.utf8), to: csv)
       }
     }
+    if let plot {
+      let svg = ErrorPlot.svg(rows: rows, antialiasing: antialiasing)
+      try checked { () throws(OutputError) in
+        try AtomicFile.write(Array(svg.utf8), to: plot)
+      }
+    }
     // Each heatmap is a file of its own, whole or absent.
     for map in encodedMaps {
       try checked { () throws(OutputError) in
         try AtomicFile.write(map.bytes, to: map.path)
       }
+    }
+  }
+
+  /// The scene at `path`, in either format by content, as `render` reads
+  /// it; its error printed and the command failed when it cannot be read.
+  private func read(_ path: String) throws -> Scene {
+    do {
+      return try SceneReader.read(
+        contentsOf: path,
+        options: SceneOptions(style: .course, shapes: CourseShapes.all))
+    } catch {
+      printError(error.report)
+      throw ExitCode.failure
     }
   }
 
@@ -302,22 +276,8 @@ struct Report: ParsableCommand {
   }
 }
 
-/// One row of the report.
-struct AccuracyRow {
-  var scene: String
-  var precision: Precision
-  var method: IntersectionMethod
-  var width: Int
-  var height: Int
-  var seconds: Double
-  /// The naive method's time for the same scene and precision.
-  var naiveSeconds: Double
-  var measurement: AccuracyMeasurement
-  var epsilon: Double
-
-  var megaraysPerSecond: Double { Double(width * height) / seconds / 1e6 }
-  var timeOverNaive: Double { seconds / naiveSeconds }
-
+/// The report's rows as the table and the CSV print them.
+extension AccuracyRow {
   static let markdownHeader = """
     | scene | precision | method | time (ms) | ÷ naive | Mrays/s \
     | max rel. error of t | p99 | max (ε) | max off silhouettes (ε) \
@@ -327,7 +287,8 @@ struct AccuracyRow {
 
   var markdown: String {
     let m = measurement
-    return "| \(scene) | \(precision.rawValue) | \(method.rawValue) | "
+    let label = method == .course ? "course engine" : method.name
+    return "| \(scene) | \(precision.rawValue) | \(label) | "
       + "\(formatted(seconds * 1000, digits: 3)) | "
       + "\(formatted(timeOverNaive, digits: 3)) | "
       + "\(formatted(megaraysPerSecond, digits: 3)) | "
@@ -348,7 +309,7 @@ struct AccuracyRow {
   var csv: String {
     let m = measurement
     return [
-      scene, precision.rawValue, method.rawValue, "\(width)", "\(height)",
+      scene, precision.rawValue, method.name, "\(width)", "\(height)",
       "\(seconds)", "\(timeOverNaive)",
       "\(megaraysPerSecond)", "\(m.maxRelativeError)", "\(m.p99RelativeError)",
       "\(m.maxRelativeError / epsilon)",
@@ -356,5 +317,20 @@ struct AccuracyRow {
       "\(m.disagreements)", "\(m.comparedHits)",
       "\(m.maxNormalErrorDegrees)",
     ].joined(separator: ",")
+  }
+}
+
+extension AntialiasingRow {
+  static let markdownHeader = """
+    | scene | size | samples | time (ms) | RMS error vs 1024 samples \
+    | max error (levels) |
+    |---|---|---:|---:|---:|---:|
+    """
+
+  var markdown: String {
+    "| \(scene) | \(width)×\(height) | \(samples) | "
+      + "\(formatted(seconds * 1000, digits: 3)) | "
+      + "\(scientific(measurement.rootMeanSquare)) | "
+      + "\(formatted(measurement.maxLevels, digits: 3)) |"
   }
 }

@@ -12,11 +12,12 @@ import PlatformSupport
 /// Colour is log10 of the relative error of t in units of the render's ε:
 /// ≤ 1 ε dark blue, through green and yellow, to ≥ 10^8 ε white-hot red.
 /// Pixels where both missed are black; where one hit and the other missed,
-/// magenta. Below the image a 24-pixel strip shows the scale with a tick and
-/// the exponent (0 to 8) at each decade.
+/// magenta. Below the image a 40-pixel strip shows the scale with a tick and
+/// the exponent (0 to 8) at each decade, and says so in two lines: the
+/// quantity and its unit (ε = 2^-23 or 2^-52), and the two other colours.
 package enum ErrorHeatmap {
   package static let decades = 8
-  static let legendHeight = 24
+  static let legendHeight = 40
   static let magenta: (UInt8, UInt8, UInt8) = (255, 0, 255)
 
   package static func image(
@@ -49,15 +50,25 @@ package enum ErrorHeatmap {
         put(column, row, colour(forUlps: ulps))
       }
     }
+    let white: (UInt8, UInt8, UInt8) = (255, 255, 255)
     for decade in 0...decades {
       let column = Swift.min(width - 1, decade * (width - 1) / decades)
       for row in (height + 12)..<(height + 15) {
-        put(column, row, (255, 255, 255))
+        put(column, row, white)
       }
       let left = Swift.min(Swift.max(column - 1, 0), width - 3)
-      drawDigit(decade, atColumn: left, row: height + 16) {
-        put($0, $1, (255, 255, 255))
-      }
+      PixelFont.draw("\(decade)", atColumn: left, row: height + 16, limit: width)
+      { put($0, $1, white) }
+    }
+    let exponent = Int((Double.log(epsilon) / Double.log(2)).rounded())
+    let lines = [
+      "colour: log10 of |t-t_ref|/t_ref in units of eps=2^\(exponent)",
+      "black: both missed, magenta: one hit, one missed",
+    ]
+    for (index, line) in lines.enumerated() {
+      PixelFont.draw(
+        line, atColumn: 1, row: height + 25 + 8 * index, limit: width
+      ) { put($0, $1, white) }
     }
     return Image8(width: width, height: totalHeight, bytes: bytes)
   }
@@ -81,22 +92,5 @@ package enum ErrorHeatmap {
       UInt8((x + (y - x) * f) * 255)
     }
     return (channel(a.0, b.0), channel(a.1, b.1), channel(a.2, b.2))
-  }
-
-  /// 3×5 pixel digits: rows top to bottom, three bits each, left bit first.
-  static let glyphs: [[UInt8]] = [
-    [7, 5, 5, 5, 7], [2, 6, 2, 2, 7], [7, 1, 7, 4, 7], [7, 1, 7, 1, 7],
-    [5, 5, 7, 1, 1], [7, 4, 7, 1, 7], [7, 4, 7, 5, 7], [7, 1, 2, 2, 2],
-    [7, 5, 7, 5, 7], [7, 5, 7, 1, 7],
-  ]
-
-  static func drawDigit(
-    _ digit: Int, atColumn column: Int, row: Int, _ put: (Int, Int) -> Void
-  ) {
-    for (dy, bits) in glyphs[digit].enumerated() {
-      for dx in 0..<3 where bits & (4 >> dx) != 0 {
-        put(column + dx, row + dy)
-      }
-    }
   }
 }

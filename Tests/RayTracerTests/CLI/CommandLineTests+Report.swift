@@ -14,6 +14,38 @@ extension CommandLineTests {
       outcome.stdout)
   }
 
+  /// The course engine has rows of its own, in double, where it can draw
+  /// the scene; a scene beyond its range (a sphere of radius 1e-300) has
+  /// none. A debug build's report says its times are not representative.
+  func testReport_HasTheCourseEnginesRowsAndWarnsInADebugBuild() throws {
+    let outcome = try run([
+      "report", "scenes/spheres.txt", "scenes/stiff/unit-sphere-1e-300.txt",
+      "--size", "8", "8", "--runs", "1", "--rounds", "1",
+      "--skip-antialiasing", "--plot", folder + "/plot.svg",
+    ])
+    XCTAssertEqual(outcome.status, 0, outcome.stderr)
+    XCTAssertTrue(
+      outcome.stdout.contains("| spheres | double | course engine |"),
+      outcome.stdout)
+    XCTAssertFalse(
+      outcome.stdout.contains("| unit-sphere-1e-300 | double | course"),
+      outcome.stdout)
+    XCTAssertTrue(
+      outcome.stdout.contains("| unit-sphere-1e-300 | double | stable |"),
+      outcome.stdout)
+    let svg = try String(contentsOfFile: folder + "/plot.svg", encoding: .utf8)
+    XCTAssertTrue(svg.hasSuffix("</svg>\n"))
+    XCTAssertTrue(svg.contains("data-method=\"course\""))
+    #if DEBUG
+      XCTAssertTrue(
+        outcome.stderr.contains("not representative")
+          && outcome.stderr.contains("swift build -c release"),
+        outcome.stderr)
+    #else
+      XCTAssertFalse(outcome.stderr.contains("debug"), outcome.stderr)
+    #endif
+  }
+
   /// A default render that takes more than 2 s says, in one line, that the
   /// fast engine exists; a fast one, or one that names its engine, does
   /// not.

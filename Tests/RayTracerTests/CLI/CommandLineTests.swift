@@ -391,12 +391,17 @@ final class CommandLineTests: XCTestCase {
     ])
     XCTAssertEqual(outcome.status, 0, outcome.stderr)
     let lines = outcome.stdout.split(separator: "\n")
-    XCTAssertEqual(lines.count, 2 + 4, outcome.stdout)
+    // Naive and stable in each precision, and the course engine in double.
+    XCTAssertEqual(lines.count, 2 + 5, outcome.stdout)
     XCTAssertTrue(
       lines[2].hasPrefix("| single-sphere | float | naive |"), String(lines[2]))
+    XCTAssertTrue(
+      lines[6].hasPrefix("| single-sphere | double | course engine |"),
+      String(lines[6]))
     let csv = String(decoding: try read("r.csv"), as: UTF8.self)
-    XCTAssertEqual(csv.split(separator: "\n").count, 5)
-    XCTAssertEqual(files().filter { $0.hasSuffix(".png") }.count, 4)
+    XCTAssertEqual(csv.split(separator: "\n").count, 6)
+    XCTAssertTrue(csv.contains("\nsingle-sphere,double,course,"), csv)
+    XCTAssertEqual(files().filter { $0.hasSuffix(".png") }.count, 5)
   }
 
   /// --reference double-double runs everywhere (on x86 it replaces the
@@ -408,7 +413,7 @@ final class CommandLineTests: XCTestCase {
     ])
     XCTAssertEqual(outcome.status, 0, outcome.stderr)
     let lines = outcome.stdout.split(separator: "\n")
-    XCTAssertEqual(lines.count, 2 + 4, outcome.stdout)
+    XCTAssertEqual(lines.count, 2 + 5, outcome.stdout)
     XCTAssertTrue(
       lines[5].hasPrefix("| single-sphere | double | stable |"),
       String(lines[5]))

@@ -96,8 +96,17 @@ extension OutputSafetyTests {
     XCTAssertEqual(both.status, 0, both.stderr)
     let maps = try FileManager.default.contentsOfDirectory(
       atPath: folder + "/maps")
-    XCTAssertEqual(maps.count, 8, "\(maps)")
+    // Two scenes: naive and stable in each precision, the course engine.
+    XCTAssertEqual(maps.count, 10, "\(maps)")
     XCTAssertTrue(maps.contains("s-2-double-stable.png"), "\(maps)")
+    XCTAssertTrue(maps.contains("s-2-double-course.png"), "\(maps)")
+    // --plot is refused over a scene as --csv is.
+    let plotOver = try run(["report", scene, "--plot", scene])
+    XCTAssertEqual(plotOver.status, 64)
+    XCTAssertTrue(
+      plotOver.stderr.contains("--plot") && plotOver.stderr.contains(
+        "would overwrite the scene file"), plotOver.stderr)
+    XCTAssertEqual(try read("a/s.txt"), before)
     // A device named as the CSV is written into, never replaced.
     let null = folder + "/null.csv"
     XCTAssertEqual(symlink("/dev/null", null), 0)
