@@ -72,8 +72,8 @@ struct View: Sendable {
   /// The ray from the eye through the centre of pixel (column, row), where
   /// the image style puts it on the screen [−1, 1]² (docs/CONVENTIONS.md).
   func ray(column: Int, row: Int) -> Ray<Double> {
-    let x: Double = settings.style.screenX(column: column, width: settings.width)
-    let y: Double = settings.style.screenY(row: row, height: settings.height)
+    let x: Double = settings.screen.x(column: column)
+    let y: Double = settings.screen.y(row: row)
     let aspect = Double(settings.height) / Double(settings.width)
     return Ray(
       origin: camera.center,

@@ -34,7 +34,7 @@ extension Renderer {
         withUnsafeTemporaryAllocation(of: Int32.self, capacity: capacity) {
           nearestEntry in
           for row in rows {
-            let y: R = settings.style.screenY(row: row, height: settings.height)
+            let y: R = settings.screen.y(row: row)
             let rowBase = camera.rowBase(y: y, aspect: aspect)
             for column in tileColumns {
               let slot =

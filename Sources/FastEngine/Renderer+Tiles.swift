@@ -58,19 +58,15 @@ extension Renderer {
     // widened by that and by 1/16 pixel more, which covers the rounding of
     // a sample's screen coordinates (a few ε of a value within 2).
     let reach = settings.sampleMargin
+    let screen = settings.screen
     let (stepX, stepY) = (
       R(reach) * (columns.count > 1 ? columns[1] - columns[0] : 2),
       R(reach)
         * (settings.height > 1
-          ? settings.style.screenY(row: 0, height: settings.height)
-            - settings.style.screenY(row: 1, height: settings.height) : 2)
+          ? screen.y(row: 0) - screen.y(row: 1) as R : 2)
     )
-    let top: R =
-      settings.style.screenY(row: rows.lowerBound, height: settings.height)
-      + stepY
-    let bottom: R =
-      settings.style.screenY(row: rows.upperBound - 1, height: settings.height)
-      - stepY
+    let top: R = screen.y(row: rows.lowerBound) + stepY
+    let bottom: R = screen.y(row: rows.upperBound - 1) - stepY
     withUnsafeTemporaryAllocation(of: Int32.self, capacity: scene.sphereCount) {
       candidates in
       for start in stride(from: 0, to: settings.width, by: tileWidth) {
@@ -125,9 +121,8 @@ extension Renderer {
   ) {
     typealias S = Kernel.Scalar
     let width = settings.width
-    let style = settings.style
     let aspect = R(settings.height) / R(width)
-    let y: R = style.screenY(row: row, height: settings.height)
+    let y: R = settings.screen.y(row: row)
     let rowBase = camera.rowBase(y: y, aspect: aspect)
     let wantsColor = targets.wantsColor
     // The tile's directions first, in a loop without calls, so that the

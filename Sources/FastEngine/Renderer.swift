@@ -151,11 +151,12 @@ package enum Renderer {
               let targets = Targets(
                 depth: depth, normals: normals, color: color,
                 normalBytes: normalBytes, colorBytes: colorBytes,
-                style: settings.style)
+                quantization: settings.quantization)
               // Screen x per column, once per render rather than a division
               // per pixel.
+              let screen = settings.screen
               let columns = (0..<width).map { column -> RayPrecision in
-                settings.style.screenX(column: column, width: width)
+                screen.x(column: column)
               }
               columns.withUnsafeBufferPointer { buffer in
                 let columns = Shared(buffer)
@@ -210,7 +211,7 @@ package enum Renderer {
     let color: UnsafeMutableBufferPointer<RGB<S>>
     let normalBytes: UnsafeMutableBufferPointer<UInt8>
     let colorBytes: UnsafeMutableBufferPointer<UInt8>
-    let style: ImageStyle
+    let quantization: Quantization
 
     var wantsDepth: Bool { depth.count > 0 }
     var wantsNormals: Bool { normals.count > 0 || normalBytes.count > 0 }
@@ -221,7 +222,8 @@ package enum Renderer {
       if normals.count > 0 {
         normals[pixel] = normal
       } else {
-        Self.store(style.pixel(normal: normal), at: pixel, in: normalBytes)
+        Self.store(
+          quantization.pixel(normal: normal), at: pixel, in: normalBytes)
       }
     }
 
@@ -230,7 +232,7 @@ package enum Renderer {
       if color.count > 0 {
         color[pixel] = value
       } else {
-        Self.store(style.pixel(value), at: pixel, in: colorBytes)
+        Self.store(quantization.pixel(value), at: pixel, in: colorBytes)
       }
     }
 

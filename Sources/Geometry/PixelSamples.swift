@@ -15,7 +15,7 @@ public struct PixelSamples<R: RayScalar>: IteratorProtocol {
   private let aspect: R
   private let centre: (x: R, y: R)
   /// One pixel in screen units: the distance between adjacent samples of
-  /// the style's grid.
+  /// the image's grid (`RenderSettings.screen`).
   private let step: (x: R, y: R)
   /// √samples strata on each axis.
   let strata: Int
@@ -28,21 +28,14 @@ public struct PixelSamples<R: RayScalar>: IteratorProtocol {
     settings: RenderSettings
   ) {
     let (width, height) = (settings.width, settings.height)
-    let style = settings.style
+    let screen = settings.screen
     self.camera = camera
     filter = settings.filter
     aspect = R(height) / R(width)
-    centre = (
-      style.screenX(column: column, width: width),
-      style.screenY(row: row, height: height)
-    )
+    centre = (screen.x(column: column), screen.y(row: row))
     step = (
-      width > 1
-        ? style.screenX(column: 1, width: width)
-          - style.screenX(column: 0, width: width) : 2,
-      height > 1
-        ? style.screenY(row: 0, height: height)
-          - style.screenY(row: 1, height: height) : 2
+      width > 1 ? screen.x(column: 1) - screen.x(column: 0) as R : 2,
+      height > 1 ? screen.y(row: 0) - screen.y(row: 1) as R : 2
     )
     strata = Int(Double(settings.samples).squareRoot())
     generator = SplitMix64(

@@ -38,7 +38,7 @@ struct ScreenProjection: Sendable {
   let condition: Double
   let width: Int
   let height: Int
-  let style: ImageStyle
+  let screen: ScreenMap
   let whole: PixelBox
 
   struct Axis: Sendable {
@@ -48,10 +48,8 @@ struct ScreenProjection: Sendable {
     let crossR3Squared: Double
   }
 
-  init(
-    camera: PerspectiveCamera<Double>, width: Int, height: Int,
-    style: ImageStyle
-  ) {
+  init(camera: PerspectiveCamera<Double>, screen: ScreenMap) {
+    let (width, height) = (screen.width, screen.height)
     let aspect = Double(height) / Double(width)
     let (u, v, w) = (
       camera.horizontal, camera.up * aspect,
@@ -75,7 +73,7 @@ struct ScreenProjection: Sendable {
     axes = (axis(r1), axis(r2))
     self.width = width
     self.height = height
-    self.style = style
+    self.screen = screen
     whole = PixelBox(
       firstColumn: 0, lastColumn: Int32(width - 1), firstRow: 0,
       lastRow: Int32(height - 1))
@@ -293,14 +291,8 @@ struct ScreenProjection: Sendable {
     // subtraction, within 2 ε of the exact value on [−1, 1]); 4 ε of the
     // widest precision a render takes (Float), times the pixels per
     // screen unit, covers that with room for this Double arithmetic.
-    let columns = (
-      style.column(screenX: x.lower, width: width),
-      style.column(screenX: x.upper, width: width)
-    )
-    let rows = (
-      style.row(screenY: y.upper, height: height),
-      style.row(screenY: y.lower, height: height)
-    )
+    let columns = (screen.column(x: x.lower), screen.column(x: x.upper))
+    let rows = (screen.row(y: y.upper), screen.row(y: y.lower))
     let padColumns =
       4 * Double(Float.ulpOfOne) * Double(width) + 0x1p-30 + margin
     let padRows = 4 * Double(Float.ulpOfOne) * Double(height) + 0x1p-30 + margin

@@ -101,8 +101,7 @@ struct ScreenTiles<Kernel: IntersectionKernel>: Sendable {
     let (width, height) = (settings.width, settings.height)
     tilesAcross = (width + Self.tileWidth - 1) / Self.tileWidth
     let projection = ScreenProjection(
-      camera: PerspectiveCamera<Double>(camera), width: width, height: height,
-      style: settings.style)
+      camera: PerspectiveCamera<Double>(camera), screen: settings.screen)
     // A supersampled pixel's rays reach out to the filter's reach from its
     // centre (`PixelSamples`); 1/16 pixel more covers the rounding of
     // their screen coordinates (a few ε of a value within 2).

@@ -21,7 +21,8 @@ final class ScreenProjectionTests: XCTestCase {
         angle: generator.uniform(5...150))
     else { return nil }
     return ScreenProjection(
-      camera: camera, width: 640, height: 480, style: .course)
+      camera: camera,
+      screen: ScreenMap(style: .course, width: 640, height: 480))
   }
 
   func interval(_ extent: ScreenProjection.Extent) -> (

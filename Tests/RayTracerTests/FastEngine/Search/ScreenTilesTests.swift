@@ -228,8 +228,8 @@ final class ScreenTilesTests: XCTestCase {
       for style in ImageStyle.allCases {
         let camera = styled(compiled.camera, style)
         let projection = ScreenProjection(
-          camera: PerspectiveCamera<Double>(camera), width: width,
-          height: height, style: style)
+          camera: PerspectiveCamera<Double>(camera),
+          screen: ScreenMap(style: style, width: width, height: height))
         let aspect = Kernel.Scalar(height) / Kernel.Scalar(width)
         var (outside, hits) = (0, 0)
         for record in compiled.spheres {
@@ -287,7 +287,8 @@ final class ScreenTilesTests: XCTestCase {
         angle: 90)
     else { return XCTFail("camera") }
     let projection = ScreenProjection(
-      camera: camera, width: 100, height: 100, style: .course)
+      camera: camera,
+      screen: ScreenMap(style: .course, width: 100, height: 100))
     // Radius 0.1 at distance 10: the silhouette spans tan(asin(0.01)) =
     // 0.0100005 either side of the centre, 0.500025 pixel at 50 pixels per
     // screen unit, about the centre at column 49.5: columns 49 and 50; the

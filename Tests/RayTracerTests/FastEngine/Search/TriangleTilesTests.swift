@@ -263,8 +263,8 @@ final class TriangleTilesTests: XCTestCase {
       for style in ImageStyle.allCases {
         let camera = styled(compiled.camera, style)
         let projection = ScreenProjection(
-          camera: PerspectiveCamera<Double>(camera), width: width,
-          height: height, style: style)
+          camera: PerspectiveCamera<Double>(camera),
+          screen: ScreenMap(style: style, width: width, height: height))
         let aspect = Kernel.Scalar(height) / Kernel.Scalar(width)
         for (index, record) in compiled.triangles.enumerated() {
           let box = compiled.triangleBox(record, projection, margin: 0)
