@@ -48,7 +48,7 @@ public enum TriangleIntersection {
   ///   with the triangle's plane when the ray meets the triangle at a
   ///   reasonable angle (away from grazing): the z values of the vertices
   ///   are weighted by non-negative barycentrics, so nothing cancels (see
-  ///   TriangleTests for the measured bound). The barycentrics carry an
+  ///   TriangleMethodTests for the measured bound). The barycentrics carry an
   ///   absolute error of a few ε times (distance from the origin / size of
   ///   the triangle): the shear subtracts nearly equal numbers.
   @inlinable

@@ -73,7 +73,7 @@ final class SphereIntersectionTests: XCTestCase {
       XCTAssertTrue(behind.entering, "\(T.self)")
       // A stable root a few radii or more away: a few roundings, away
       // from tangency (the reference's own discriminant is then well
-      // conditioned; tangent lines are left to SphereTests).
+      // conditioned; tangent lines are left to SphereMethodTests).
       if radius * radius - across.lengthSquared > radius * radius / 100 {
         assertRelativeError(behind.t, want.t, ulps: 8, "behind the origin")
       }

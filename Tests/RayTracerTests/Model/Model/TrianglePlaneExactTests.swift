@@ -11,7 +11,7 @@ import XCTest
 /// A triangle much larger than its distance from the ray's origin takes t
 /// from its plane (`TrianglePlane`); every other keeps the watertight
 /// test's t.
-final class TrianglePlaneTests: XCTestCase {
+final class TrianglePlaneExactTests: XCTestCase {
   /// A ground triangle 2·10⁶ across, y = 0.
   let ground = Triangle<Double>(
     Vector3(-1e6, 0, 1e6), Vector3(1e6, 0, 1e6), Vector3(0, 0, -1e6))

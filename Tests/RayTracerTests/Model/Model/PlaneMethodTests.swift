@@ -8,7 +8,7 @@ import XCTest
 @testable import Numerics
 @testable import PlatformSupport
 
-final class PlaneTests: XCTestCase {
+final class PlaneMethodTests: XCTestCase {
   /// The ground plane y = 0 and the plane y = −1.2 (a negative offset).
   func checkHitFromEitherSide<T: RayScalar>(_: T.Type) {
     let ground = Plane<T>(normal: Vector3(0, 1, 0), offset: 0, materialIndex: 2)

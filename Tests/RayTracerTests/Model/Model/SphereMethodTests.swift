@@ -8,7 +8,7 @@ import XCTest
 @testable import Numerics
 @testable import PlatformSupport
 
-final class SphereTests: XCTestCase {
+final class SphereMethodTests: XCTestCase {
   // MARK: - Geometry, both methods
 
   /// Sphere at (0, 0, −10) of radius 2, ray from the origin down −z: roots 8

@@ -10,7 +10,7 @@ import XCTest
 
 /// A mesh file's triangles as one scene entry (`TriangleMesh`): hit,
 /// placed, flattened and scaled exactly as the group of the same triangles.
-final class TriangleMeshTests: XCTestCase {
+final class TriangleMeshModelTests: XCTestCase {
   /// A fan of `count` triangles around the z axis at z = −5, with vertex
   /// normals, and twins of the first two (coincident: ties).
   func fan(_ count: Int) -> [Triangle<Double>] {

@@ -8,7 +8,7 @@ import XCTest
 @testable import Numerics
 @testable import PlatformSupport
 
-final class TriangleTests: XCTestCase {
+final class TriangleMethodTests: XCTestCase {
   /// The unit right triangle in z = 0, wound counter-clockwise seen from +z,
   /// so its normal is +z.
   func unitTriangle<T: RayScalar>(_: T.Type = T.self) -> Triangle<T> {
