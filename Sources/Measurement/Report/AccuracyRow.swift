@@ -93,7 +93,7 @@ package struct AccuracyRow: Sendable {
       #if (arch(i386) || arch(x86_64)) && !os(Windows) && !os(Android)
         return rows(in: Float80.self)
       #else
-        preconditionFailure("Float80 is refused where the platform lacks it")
+        preconditionFailure("refused by validate(): no 80-bit type here")
       #endif
     }
   }
