@@ -272,9 +272,17 @@ struct Render: ParsableCommand {
     do {
       let bar = ProgressBar(rows: plan.settings.height)
       defer { bar?.finish() }
+      // The default engine, on a scene it will be slow on, says so early.
+      let note =
+        engine == nil && plan.request.engine == .course
+        ? SlowRenderNote(
+          rows: plan.settings.height, limit: Self.slowCourseRender) : nil
       var progress: (@Sendable (Int) -> Void)?
-      if let bar {
-        progress = { finished in bar.update(finished) }
+      if bar != nil || note != nil {
+        progress = { finished in
+          note?.update(finished) { bar?.finish() }
+          bar?.update(finished)
+        }
       }
       report = try RenderJob.run(
         scene: scene, request: plan.request, files: plan.files,

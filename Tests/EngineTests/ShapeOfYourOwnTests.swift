@@ -149,6 +149,35 @@ final class ShapeOfYourOwnTests: XCTestCase {
     }
   }
 
+  /// Inside a Transform of a text scene the disc is read as in a Group
+  /// (it was refused: "expected a transform operation or an object"), and
+  /// both engines draw it moved: the same pixels as the disc written at
+  /// its moved centre.
+  func testDisc_InsideATransform() throws {
+    let options = SceneOptions(style: .course, shapes: [Self.discKind])
+    let moved = Self.text.replacingOccurrences(
+      of: "Disc { radius 2.5 normal 0 0 1 center 0 0 0 }",
+      with: "Transform { Translate 0.5 0 0 "
+        + "Disc { radius 2.5 normal 0 0 1 center 0 0 0 } }")
+    let placed = Self.text.replacingOccurrences(
+      of: "center 0 0 0", with: "center 0.5 0 0")
+    XCTAssertNotEqual(moved, Self.text)
+    let a = BothEngines(
+      try SceneReader.parse(
+        bytes: Array(moved.utf8), file: "t.txt", options: options),
+      width: 48, height: 36, style: .course)
+    let b = BothEngines(
+      try SceneReader.parse(
+        bytes: Array(placed.utf8), file: "p.txt", options: options),
+      width: 48, height: 36, style: .course)
+    for ((output, course, fast), (_, placedCourse, _)) in zip(
+      a.images, b.images)
+    {
+      XCTAssertEqual(course, fast, "\(output): both engines")
+      XCTAssertEqual(course, placedCourse, "\(output): moved as placed")
+    }
+  }
+
   /// A reader without the disc's kind does not know the word; a disc
   /// without a field, or with values its kind refuses, is one error line
   /// at its place.

@@ -30,6 +30,11 @@ let projectFolder: String = {
 /// (CI has it; a fresh clone does not).
 let sharedReference = "\(projectFolder)/../shared/reference"
 
+/// Whether the long cases run (RAYTRACE_LONG_TESTS set; `.ci/run` sets
+/// it): the engines compared at 160×160 rather than 112×112.
+let runsLongTests =
+  ProcessInfo.processInfo.environment["RAYTRACE_LONG_TESTS"] != nil
+
 /// The files of `folder` whose names end in one of `suffixes`, sorted.
 func files(in folder: String, endingIn suffixes: [String]) -> [String] {
   let names = (try? FileManager.default.contentsOfDirectory(atPath: folder))

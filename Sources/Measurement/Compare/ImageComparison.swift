@@ -163,19 +163,25 @@ package struct ImageComparison: Sendable {
   }
 
   /// The first explanation that accounts for nearly every pixel (99.9 %
-  /// after the conversion), else where the differing pixels lie.
+  /// after the conversion) and for the difference itself (it leaves at
+  /// most a tenth of the `count` differing pixels differing), else where
+  /// the differing pixels lie. Without the second condition a grey image
+  /// with one pixel off read as "channels swapped" (swapping changes
+  /// nothing in grey) and a left-right symmetric one as "mirrored".
   static func pattern(
     _ a: ReadImage, _ b: ReadImage, differing: [Bool], count: Int,
     matcher: Matcher
   ) -> Pattern {
     let (width, height) = (a.width, a.height)
     let enough = 0.999
+    let differingShare = Double(count) / Double(max(1, width * height))
     func explains(_ converted: (Int, Int, Int) -> Double?, loose: Bool = false)
       -> Bool
     {
       var looser = matcher
       if loose { looser.tolerance += matcher.eightBit ? 3 : 1e-3 }
-      return share(a, matcher: looser, converted) >= enough
+      let matched = share(a, matcher: looser, converted)
+      return matched >= enough && 1 - matched <= differingShare / 10
     }
     // Moved by a pixel or two: B(c, r) = A(c − x, r − y).
     for (x, y) in [(0, 1), (0, -1), (1, 0), (-1, 0), (1, 1), (-1, -1),
@@ -214,11 +220,12 @@ package struct ImageComparison: Sendable {
         let bAbsolute = ReadImage(
           width: width, height: height, channels: 3,
           values: a.values.map(absolute), isEightBit: true)
-        if share(bAbsolute, matcher: {
+        let matched = share(bAbsolute, matcher: {
           var m = matcher
           m.tolerance += 3
           return m
-        }(), { b[$0, $1, $2] }) >= enough {
+        }(), { b[$0, $1, $2] })
+        if matched >= enough && 1 - matched <= differingShare / 10 {
           return .normalConvention(aIsAbsolute: false)
         }
       }

@@ -194,12 +194,23 @@ extension SceneParser {
       case .word:
         break
       }
-      if Self.objectKinds.contains(where: { tokenizer.matches(token, $0) }) {
+      // A shape of one's own (SceneOptions.shapes) as in a Group.
+      let ownShape =
+        options.shapes.isEmpty
+        ? nil
+        : options.shapes.first { tokenizer.text(of: token) == $0.name }
+      if ownShape != nil
+        || Self.objectKinds.contains(where: { tokenizer.matches(token, $0) })
+      {
         guard object == nil else {
           throw error(
             at: token, "a Transform holds one object; group several in a Group")
         }
-        object = try parseObject(token, depth: depth, material: material)
+        if let ownShape {
+          object = try parseShape(ownShape, token, material: material)
+        } else {
+          object = try parseObject(token, depth: depth, material: material)
+        }
         continue
       }
       guard object == nil else {
@@ -244,7 +255,7 @@ extension SceneParser {
             "Translate", "Scale", "UniformScale", "XRotate", "YRotate",
             "ZRotate",
             "Rotate", "Matrix4f",
-          ] + Self.objectKinds.map { "\($0)" })
+          ] + Self.objectKinds.map { "\($0)" } + options.shapes.map(\.name))
       }
     }
   }

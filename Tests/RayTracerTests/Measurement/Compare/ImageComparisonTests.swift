@@ -96,6 +96,31 @@ final class ImageComparisonTests: XCTestCase {
     XCTAssertEqual(pattern(a, swapped), .swappedChannels(order: [2, 1, 0]))
   }
 
+  /// A transform that changes nothing where the images differ does not
+  /// explain them: one pixel off in a grey image is not "channels
+  /// swapped" (swapping changes nothing in grey), and a pixel off in an
+  /// image symmetric left to right is not "mirrored".
+  func testOnePixelOff_IsNotATransform() {
+    let grey = changed(Self.normals()) { column, row, _ in
+      Double((column * 7 + row * 3) % 256)
+    }
+    let symmetric = changed(Self.normals()) { column, row, _ in
+      Double(min(column, Self.width - 1 - column) * 9 + row)
+    }
+    for a in [grey, symmetric] {
+      let b = changed(a) { column, row, channel in
+        column == 5 && row == 6 ? 255 - a[column, row, channel]
+          : a[column, row, channel]
+      }
+      switch pattern(a, b) {
+      case .swappedChannels, .flippedColumns, .flippedRows, .shifted,
+        .normalConvention:
+        XCTFail("\(pattern(a, b)) for one pixel off")
+      default: break
+      }
+    }
+  }
+
   /// |n| against (n + 1)/2, whichever is A: told apart from a real error.
   func testNormalConvention_EitherWay() {
     let absolute = Self.normals(absolute: true)
