@@ -2,9 +2,10 @@ import Geometry
 import SceneDescription
 
 
-/// A binary tree of boxes over a list of objects' boxes, for a mesh's
-/// triangles: each node's box holds its children's, each leaf names a few
-/// objects, and a ray visits only the nodes whose boxes it meets.
+/// A binary tree of boxes over a list of objects' boxes (a mesh's
+/// triangles, a large group's objects): each node's box holds its
+/// children's, each leaf names a few objects, and a ray visits only the
+/// nodes whose boxes it meets.
 ///
 /// Built by splitting the objects at the median of their centres along the
 /// widest axis, until at most `leafSize` remain; about 2n/`leafSize` nodes.

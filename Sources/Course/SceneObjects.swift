@@ -25,8 +25,12 @@ struct SceneObjects {
     return objects.object(object)
   }
 
+  /// A group as the course's `Group`; one of many objects holds them in a
+  /// `BoxedGroup`, which finds the same hits without asking each.
   mutating func group(_ group: SceneDescription.Group<Double>) -> Group {
-    Group(group.objects.compactMap { object($0) })
+    let objects = group.objects.compactMap { object($0) }
+    return objects.count > BoxedGroup.threshold
+      ? Group([BoxedGroup(objects)]) : Group(objects)
   }
 
   /// One object of the scene as the course's; nil for a transform with no

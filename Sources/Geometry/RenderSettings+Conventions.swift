@@ -1,7 +1,8 @@
 /// What the image style means for the engines, resolved here once: the
 /// camera as the style builds its rays, where pixels fall on the screen,
-/// the light falloff, how far a pixel's samples reach and how values
-/// become 8-bit pixels (docs/CONVENTIONS.md). The engines ask these;
+/// the light falloff and how far a pixel's samples reach
+/// (docs/CONVENTIONS.md; how values become 8-bit pixels is
+/// `RenderSettings.quantization`, in Numerics). The engines ask these;
 /// neither reads the style itself.
 extension RenderSettings {
   /// Where this image's pixel centres fall on the screen, and back.
@@ -9,10 +10,6 @@ extension RenderSettings {
   public var screen: ScreenMap {
     ScreenMap(style: style, width: width, height: height)
   }
-
-  /// How this image's 8-bit outputs quantise normals and colours.
-  @inlinable
-  public var quantization: Quantization { Quantization(style: style) }
 
   /// `camera` in precision `S`, as the style builds its rays. The mit
   /// style's sample solution takes the scene's `up` as the image's

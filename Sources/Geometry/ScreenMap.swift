@@ -3,7 +3,7 @@
 /// engines build their rays through it (`RenderSettings.screen`) without
 /// asking which style it is.
 public struct ScreenMap: Sendable {
-  @usableFromInline let style: ImageStyle
+  public let style: ImageStyle
   public let width: Int
   public let height: Int
 
@@ -14,51 +14,43 @@ public struct ScreenMap: Sendable {
     self.height = height
   }
 
-  /// Screen x of the centre of pixel column `column`.
+  /// Screen x of column i's centre, in [−1, 1], left to right: the
+  /// course's pixel centres, the mit style's pixel corners.
   @inlinable
-  public func x<S: RayScalar>(column: Int) -> S {
-    style.screenX(column: column, width: width)
+  public func x<S: RayScalar>(column i: Int) -> S {
+    switch style {
+    case .course: S(2 * i + 1) / S(width) - 1
+    case .mit: width > 1 ? S(2 * i) / S(width - 1) - 1 : 0
+    }
   }
 
-  /// Screen y of the centre of pixel row `row` (row 0 at the top).
+  /// Screen y of row j, top to bottom. Course: 1 − (2j − 1)/H, one pixel
+  /// above the pixel's centre. The course's code computes
+  /// y = (H/2 − j)/(H/2) + 1/H, adding the half pixel that centres x with
+  /// the sign that centres nothing for y, and every image it published
+  /// carries that shift (docs/CONVENTIONS.md): row 0 looks at y = 1 + 1/H
+  /// and the bottom row at −1 + 3/H.
   @inlinable
-  public func y<S: RayScalar>(row: Int) -> S {
-    style.screenY(row: row, height: height)
+  public func y<S: RayScalar>(row j: Int) -> S {
+    switch style {
+    case .course: 1 - S(2 * j - 1) / S(height)
+    case .mit: height > 1 ? 1 - S(2 * j) / S(height - 1) : 0
+    }
   }
 
-  /// The (fractional) column whose centre is at screen x: the inverse of
-  /// `x(column:)`.
+  /// The fractional column whose screen x is `x`: `x(column:)` inverted.
   public func column(x: Double) -> Double {
-    style.column(screenX: x, width: width)
+    switch style {
+    case .course: ((x + 1) * Double(width) - 1) / 2
+    case .mit: width > 1 ? (x + 1) * Double(width - 1) / 2 : 0
+    }
   }
 
-  /// The (fractional) row whose centre is at screen y: the inverse of
-  /// `y(row:)`.
+  /// The fractional row whose screen y is `y`: `y(row:)` inverted.
   public func row(y: Double) -> Double {
-    style.row(screenY: y, height: height)
-  }
-}
-
-/// How an engine turns a normal or a colour into an 8-bit pixel, for an
-/// output written only as an 8-bit image: its style's rule
-/// (`RenderSettings.quantization`).
-public struct Quantization: Sendable {
-  @usableFromInline let style: ImageStyle
-
-  @inlinable
-  public init(style: ImageStyle) { self.style = style }
-
-  /// A normal's pixel: |n| per component (course) or (n + 1)/2 (mit).
-  @inlinable @inline(__always)
-  public func pixel<S: RayScalar>(normal: Vector3<S>) -> (UInt8, UInt8, UInt8)
-  {
-    style.pixel(normal: normal)
-  }
-
-  /// A colour's pixel, each component quantised.
-  @inlinable @inline(__always)
-  public func pixel<S: RayScalar>(_ value: Vector3<S>) -> (UInt8, UInt8, UInt8)
-  {
-    style.pixel(value)
+    switch style {
+    case .course: ((1 - y) * Double(height) + 1) / 2
+    case .mit: height > 1 ? (1 - y) * Double(height - 1) / 2 : 0
+    }
   }
 }

@@ -141,10 +141,10 @@ struct EllipsoidAccuracy: CustomStringConvertible {
     let aspect = R(height) / R(width)
     var result = EllipsoidAccuracy()
     for row in 0..<height {
-      let y: R = style.screenY(row: row, height: height)
+      let y: R = ScreenMap(style: style, width: 1, height: height).y(row: row)
       let rowBase = camera.rowBase(y: y, aspect: aspect)
       for column in 0..<width {
-        let x: R = style.screenX(column: column, width: width)
+        let x: R = ScreenMap(style: style, width: width, height: 1).x(column: column)
         let direction = Vector3<Double>(
           camera.rayDirection(x: x, rowBase: rowBase))
         let pixel = row * width + column

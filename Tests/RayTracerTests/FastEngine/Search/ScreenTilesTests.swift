@@ -189,10 +189,11 @@ final class ScreenTilesTests: XCTestCase {
   ) -> [Sphere<Double>] {
     let aspect = Double(height) / Double(width)
     return (0..<count).map { _ in
-      let x: Double = style.screenX(
-        column: Int.random(in: 0..<width, using: &generator), width: width)
-      let y: Double = style.screenY(
-        row: Int.random(in: 0..<height, using: &generator), height: height)
+      let screen = ScreenMap(style: style, width: width, height: height)
+      let x: Double = screen.x(
+        column: Int.random(in: 0..<width, using: &generator))
+      let y: Double = screen.y(
+        row: Int.random(in: 0..<height, using: &generator))
       let direction = styled(camera, style).rayDirection(
         x: x, y: y, aspect: aspect
       ).normalized()
@@ -236,9 +237,9 @@ final class ScreenTilesTests: XCTestCase {
           let (center, reach) = compiled.cullBound(record)
           let box = projection.pixelBox(center: center, reach: reach)
           for row in 0..<height {
-            let y: Kernel.Scalar = style.screenY(row: row, height: height)
+            let y: Kernel.Scalar = ScreenMap(style: style, width: 1, height: height).y(row: row)
             for column in 0..<width {
-              let x: Kernel.Scalar = style.screenX(column: column, width: width)
+              let x: Kernel.Scalar = ScreenMap(style: style, width: width, height: 1).x(column: column)
               let ray = CameraRay(
                 origin: compiled.rayOrigin,
                 direction: camera.rayDirection(

@@ -218,10 +218,11 @@ final class TriangleTilesTests: XCTestCase {
     let aspect = Double(height) / Double(width)
     let view = styled(camera, style)
     return (0..<count).map { _ in
-      let x: Double = style.screenX(
-        column: Int.random(in: 0..<width, using: &generator), width: width)
-      let y: Double = style.screenY(
-        row: Int.random(in: 0..<height, using: &generator), height: height)
+      let screen = ScreenMap(style: style, width: width, height: height)
+      let x: Double = screen.x(
+        column: Int.random(in: 0..<width, using: &generator))
+      let y: Double = screen.y(
+        row: Int.random(in: 0..<height, using: &generator))
       let direction = view.rayDirection(x: x, y: y, aspect: aspect)
         .normalized()
       // Screen right and up at that pixel, perpendicular to its ray, each
@@ -274,8 +275,8 @@ final class TriangleTilesTests: XCTestCase {
             : compiled.trianglePlanes[index - compiled.ordinaryTriangleCount]
           for row in 0..<height {
             for column in 0..<width {
-              let x: Kernel.Scalar = style.screenX(column: column, width: width)
-              let y: Kernel.Scalar = style.screenY(row: row, height: height)
+              let x: Kernel.Scalar = ScreenMap(style: style, width: width, height: 1).x(column: column)
+              let y: Kernel.Scalar = ScreenMap(style: style, width: 1, height: height).y(row: row)
               let direction = camera.rayDirection(x: x, y: y, aspect: aspect)
               let ray = WatertightRay(
                 Ray(origin: compiled.rayOrigin, direction: direction))

@@ -8,7 +8,7 @@ import XCTest
 @testable import Numerics
 @testable import PlatformSupport
 
-final class GroupTests: XCTestCase {
+final class GroupModelTests: XCTestCase {
   /// Spheres on the −z axis at 10, 20, 30 (radius 1, materials 1, 2, 3)
   /// and the plane z = −15 (material 4), seen from the origin down −z.
   func objects<T: RayScalar>(_: T.Type) -> [SceneObject<T>] {

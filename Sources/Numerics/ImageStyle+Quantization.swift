@@ -1,5 +1,7 @@
+import Geometry
+
 /// How raw depth, normals and colour become 8-bit values in each style, a
-/// value at a time: what both engines store for an 8-bit output
+/// value at a time: what the fast engine stores for an 8-bit output
 /// (`RenderSettings.quantizedOutputs`) and the writers encode
 /// (`ImageConventions` in SceneIO, for whole images).
 extension ImageStyle {
@@ -66,4 +68,34 @@ extension ImageStyle {
     let whole = self == .course ? scaled.rounded(.towardZero) : scaled.rounded()
     return UInt8(truncatingIfNeeded: Int(Double(whole)))
   }
+}
+
+/// How an engine turns a normal or a colour into an 8-bit pixel, for an
+/// output written only as an 8-bit image: its style's rule
+/// (`RenderSettings.quantization`).
+public struct Quantization: Sendable {
+  @usableFromInline let style: ImageStyle
+
+  @inlinable
+  public init(style: ImageStyle) { self.style = style }
+
+  /// A normal's pixel: |n| per component (course) or (n + 1)/2 (mit).
+  @inlinable @inline(__always)
+  public func pixel<S: RayScalar>(normal: Vector3<S>) -> (UInt8, UInt8, UInt8)
+  {
+    style.pixel(normal: normal)
+  }
+
+  /// A colour's pixel, each component quantised.
+  @inlinable @inline(__always)
+  public func pixel<S: RayScalar>(_ value: Vector3<S>) -> (UInt8, UInt8, UInt8)
+  {
+    style.pixel(value)
+  }
+}
+
+extension RenderSettings {
+  /// How this image's 8-bit outputs quantise normals and colours.
+  @inlinable
+  public var quantization: Quantization { Quantization(style: style) }
 }
