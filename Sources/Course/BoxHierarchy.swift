@@ -31,7 +31,9 @@ struct BoxHierarchy: Sendable {
     var pending = [0]
     while let index = pending.popLast() {
       let (first, count) = (nodes[index].first, nodes[index].count)
-      let members = order[first..<first + count]
+      // A copy: a slice would keep `order`'s storage shared, and the
+      // replacement below would copy all of it at every node.
+      let members = Array(order[first..<first + count])
       var box = boxes[members.first!]
       var centerBox = BoundingBox(lower: centers[members.first!],
         upper: centers[members.first!])
