@@ -73,8 +73,9 @@ def axis(text):
 
 def main(svg_path, csv_path, png_path):
     root = ET.parse(svg_path).getroot()  # raises on malformed XML
-    panel = next(g for g in root.iter(NS + "g")
-                 if g.get("data-panel") == "error" and g.get("class") == "panel")
+    panel = next(
+        g for g in root.iter(NS + "g")
+        if g.get("data-panel") == "error" and g.get("class") == "panel")
     to_x, to_y = axis(panel.get("data-x-axis")), axis(panel.get("data-y-axis"))
     zero_y = panel.get("data-zero-y")
     marks = {}
@@ -107,8 +108,9 @@ def main(svg_path, csv_path, png_path):
         for dy in range(-3, 4):
             for dx in range(-3, 4):
                 px, py = round(x) + dx, round(y) + dy
-                if 0 <= px < width and 0 <= py < height and all(
-                        abs(a - b) <= 40 for a, b in zip(pixels[py][px], colour)):
+                inside = 0 <= px < width and 0 <= py < height
+                if inside and all(abs(a - b) <= 40
+                                  for a, b in zip(pixels[py][px], colour)):
                     found = True
         if found:
             seen += 1

@@ -17,7 +17,8 @@ trap 'rm -rf "$work"' EXIT
 "$binary" report scenes/spheres.txt scenes/stiff/far-sphere-1e6.txt \
   scenes/stiff/grazing-sphere.txt --size 64 64 --runs 3 --rounds 1 \
   --plot "$work/plot.svg" --csv "$work/rows.csv" > /dev/null
-read -r width height < <(sed -n 's/.*<svg [^>]*width="\([0-9]*\)" height="\([0-9]*\)".*/\1 \2/p' "$work/plot.svg")
+size='s/.*<svg [^>]*width="\([0-9]*\)" height="\([0-9]*\)".*/\1 \2/p'
+read -r width height < <(sed -n "$size" "$work/plot.svg")
 "$browser" --headless --no-sandbox --disable-gpu --hide-scrollbars \
   --force-device-scale-factor=1 --window-size="$width,$height" \
   --screenshot="$work/plot.png" "file://$work/plot.svg" > /dev/null 2>&1

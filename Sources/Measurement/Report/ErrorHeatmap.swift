@@ -57,8 +57,9 @@ package enum ErrorHeatmap {
         put(column, row, white)
       }
       let left = Swift.min(Swift.max(column - 1, 0), width - 3)
-      PixelFont.draw("\(decade)", atColumn: left, row: height + 16, limit: width)
-      { put($0, $1, white) }
+      PixelFont.draw(
+        "\(decade)", atColumn: left, row: height + 16, limit: width
+      ) { put($0, $1, white) }
     }
     let exponent = Int((Double.log(epsilon) / Double.log(2)).rounded())
     let lines = [

@@ -10,7 +10,8 @@ package enum ReportedMethod: Hashable, Sendable {
   /// Naive and stable in the fast engine, then the course engine where it
   /// renders the scene (`precision` Double and the scene in its range).
   package static func all(withCourse: Bool) -> [ReportedMethod] {
-    IntersectionMethod.allCases.map { .fast($0) } + (withCourse ? [.course] : [])
+    IntersectionMethod.allCases.map { .fast($0) }
+      + (withCourse ? [.course] : [])
   }
 
   /// The name in the table, the CSV and the plot: naive, stable, course.
