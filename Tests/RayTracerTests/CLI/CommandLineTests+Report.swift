@@ -62,7 +62,8 @@ extension CommandLineTests {
     // And says so while it renders, as soon as the rows done put it past
     // 2 s, not only at the end.
     XCTAssertTrue(
-      slow.stderr.contains("this render will take about"), slow.stderr)
+      slow.stderr.contains("of the rows in") && slow.stderr.contains(
+        "tests every object for every ray"), slow.stderr)
     let quick = try run([
       "scenes/spheres.txt", "--size", "40", "40", "--depth", folder + "/e.png",
     ])
