@@ -66,6 +66,19 @@ extension Render {
       for line in output.pixel { printOutput("  " + line) }
       if !output.passes(need: need) { failed = true }
     }
+    // A pixel one engine hits and the other misses is never within a
+    // tolerance: counted and placed, and the check fails on any.
+    let width = settings.width
+    let split = EngineCheck.hitOrMissPixels(course: course, fast: fast)
+    if let first = split.first {
+      let (row, column) = first.quotientAndRemainder(dividingBy: width)
+      let courseHits = split.filter { course.depth[$0].isFinite }.count
+      printOutput(
+        "\nhit or miss: \(split.count) pixels where one engine hits and "
+          + "the other misses (the course engine hits \(courseHits) of "
+          + "them); the first at column \(column), row \(row)")
+      failed = true
+    }
     if failed { throw ExitCode.failure }
   }
 }

@@ -133,4 +133,26 @@ final class EngineCheckTests: XCTestCase {
     let verdict = try XCTUnwrap(normals.pixel.last)
     XCTAssertTrue(verdict.contains("the normals differ"), verdict)
   }
+
+  /// Pixels one engine hits and the other misses are found whatever the
+  /// images' 8-bit levels say (a depth beyond the course's 40-unit cutoff
+  /// is black either way): here the course engine misses two pixels of the
+  /// scene and hits one the fast engine misses.
+  func testHitOrMissPixels_AreCountedWhereverTheyAre() throws {
+    let scene = try scene()
+    let fast = Renderer.render(
+      CompiledScene<StableKernel<Double>>(scene), settings: settings())
+    var course = CourseEngine.render(scene, settings: settings())
+    XCTAssertEqual(
+      EngineCheck.hitOrMissPixels(course: course, fast: fast), [],
+      "the course's own code agrees")
+    let hits = course.depth.indices.filter { course.depth[$0].isFinite }
+    let misses = course.depth.indices.filter { !course.depth[$0].isFinite }
+    let changed = [hits[10], hits[200], misses[5]].sorted()
+    course.depth[hits[10]] = .infinity
+    course.depth[hits[200]] = .infinity
+    course.depth[misses[5]] = 100
+    XCTAssertEqual(
+      EngineCheck.hitOrMissPixels(course: course, fast: fast), changed)
+  }
 }

@@ -218,3 +218,17 @@ package struct EngineCheck {
     }
   }
 }
+
+extension EngineCheck {
+  /// The pixels one engine hits and the other misses (depth finite in one
+  /// buffer only), in order: never within a tolerance, so `--check` counts
+  /// them, names the first and fails on any.
+  package static func hitOrMissPixels(
+    course: RenderBuffers<Double>, fast: RenderBuffers<Double>
+  ) -> [Int] {
+    precondition(course.depth.count == fast.depth.count)
+    return course.depth.indices.filter {
+      course.depth[$0].isFinite != fast.depth[$0].isFinite
+    }
+  }
+}
