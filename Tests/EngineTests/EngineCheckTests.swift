@@ -58,21 +58,26 @@ final class EngineCheckTests: XCTestCase {
 
   /// A normal not normalised (twice as long): the normals image differs,
   /// and the first differing pixel names the same object and t and the
-  /// normal's length.
+  /// normal's length; a normal of the right direction is no "turned"
+  /// normal, too long or too short.
   func testNormalNotNormalised_Named() throws {
     let scene = try scene()
-    var course = CourseEngine.render(scene, settings: settings())
-    course.normals = course.normals.map { $0 * 2 }
-    let check = check(scene, course: course, outputs: [.normals]) { hit in
-      var long = hit
-      long.normal = hit.normal * 2
-      return long
+    for scale in [2.0, 0.5] {
+      var course = CourseEngine.render(scene, settings: settings())
+      course.normals = course.normals.map { $0 * scale }
+      let check = check(scene, course: course, outputs: [.normals]) { hit in
+        var long = hit
+        long.normal = hit.normal * scale
+        return long
+      }
+      let normals = try XCTUnwrap(check.outputs.first)
+      XCTAssertLessThan(normals.comparison.share, 0.999)
+      XCTAssertEqual(normals.turnedNormals, 0, "\(scale): the same directions")
+      let verdict = try XCTUnwrap(normals.pixel.last)
+      XCTAssertTrue(
+        verdict.contains("has length \(Float(scale)), not 1"), verdict)
+      XCTAssertTrue(normals.pixel[1].contains("object"), normals.pixel[1])
     }
-    let normals = try XCTUnwrap(check.outputs.first)
-    XCTAssertLessThan(normals.comparison.share, 0.999)
-    let verdict = try XCTUnwrap(normals.pixel.last)
-    XCTAssertTrue(verdict.contains("has length 2.0, not 1"), verdict)
-    XCTAssertTrue(normals.pixel[1].contains("object"), normals.pixel[1])
   }
 
   /// A sign error that loses the spheres: the course engine misses what

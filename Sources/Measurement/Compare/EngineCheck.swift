@@ -35,9 +35,11 @@ package struct EngineCheck {
     package var name: String
     package var comparison: ImageComparison
     package var pixel: [String]
-    /// For normals: pixels where both engines hit and the raw normals
-    /// point more than 2.6° apart, which an image of |n| can hide (a
-    /// normal turned inside out draws the same |n|).
+    /// For normals: pixels where both engines hit and the normals point
+    /// more than 2.6° apart, which an image of |n| can hide (a normal
+    /// turned inside out draws the same |n|). Directions only: a normal of
+    /// the right direction and the wrong length is the first pixel's
+    /// report ("normalise it"), not a turn.
     package var turnedNormals = 0
     /// Whether the output matches: its image within the tolerance on
     /// `need` of the pixels, and no normal turned.
@@ -86,7 +88,7 @@ package struct EngineCheck {
         for index in course.normals.indices
         where course.depth.indices.contains(index)
           && course.depth[index].isFinite && fast.depth[index].isFinite
-          && course.normals[index].dot(fast.normals[index]) < 0.999
+          && Self.cosine(course.normals[index], fast.normals[index]) < 0.999
         {
           turned += 1
           if firstTurned == nil {
@@ -230,5 +232,12 @@ extension EngineCheck {
     return course.depth.indices.filter {
       course.depth[$0].isFinite != fast.depth[$0].isFinite
     }
+  }
+}
+
+extension EngineCheck {
+  /// The cosine of the angle between two normals, whatever their lengths.
+  static func cosine(_ a: Vector3<Double>, _ b: Vector3<Double>) -> Double {
+    a.dot(b) / (a.length * b.length)
   }
 }
