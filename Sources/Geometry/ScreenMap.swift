@@ -3,7 +3,7 @@
 /// engines build their rays through it (`RenderSettings.screen`) without
 /// asking which style it is.
 public struct ScreenMap: Sendable {
-  public let style: ImageStyle
+  @usableFromInline let style: ImageStyle
   public let width: Int
   public let height: Int
 

@@ -61,7 +61,7 @@ package enum ErrorHeatmap {
         "\(decade)", atColumn: left, row: height + 16, limit: width
       ) { put($0, $1, white) }
     }
-    let exponent = Int((Double.log(epsilon) / Double.log(2)).rounded())
+    let exponent = epsilon.exponent  // ε is a power of two
     let lines = [
       "colour: log10 of |t-t_ref|/t_ref in units of eps=2^\(exponent)",
       "black: both missed, magenta: one hit, one missed",
@@ -81,7 +81,7 @@ package enum ErrorHeatmap {
       (0.05, 0.05, 0.35), (0.0, 0.55, 0.85), (0.1, 0.75, 0.3),
       (0.95, 0.85, 0.1), (0.9, 0.15, 0.1), (1, 1, 1),
     ]
-    let position = ulps > 1 ? Double.log(ulps) / Double.log(10) : 0
+    let position = ulps > 1 ? log10(ulps) : 0
     let scaled =
       Swift.min(Swift.max(position / Double(decades), 0), 1)
       * Double(stops.count - 1)
