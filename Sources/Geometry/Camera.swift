@@ -59,6 +59,7 @@ public struct PerspectiveCamera<Scalar: RayScalar>: Hashable, Sendable {
 
   /// The unit direction through screen point (x, y); `aspect` is H / W.
   @inlinable
+  @_specialize(where Scalar == Double)
   public func rayDirection(x: Scalar, y: Scalar, aspect: Scalar) -> Vector3<
     Scalar
   > {

@@ -10,6 +10,7 @@ public enum Light<Scalar: RayScalar>: Hashable, Sendable {
   /// The unit vector from `point` towards the light and the light's colour
   /// arriving there.
   @inlinable
+  @_specialize(where Scalar == Double)
   public func illumination(
     at point: Vector3<Scalar>, attenuate: Bool
   ) -> (toLight: Vector3<Scalar>, color: RGB<Scalar>) {

@@ -38,6 +38,7 @@ public struct Material<Scalar: RayScalar>: Hashable, Sendable {
 
   /// The colour seen at a hit: `Surface.shade`.
   @inlinable
+  @_specialize(where Scalar == Double)
   public func shade(
     point: Vector3<Scalar>, normal: Vector3<Scalar>,
     viewDirection: Vector3<Scalar>, ambient: RGB<Scalar>,
@@ -71,6 +72,7 @@ public struct Material<Scalar: RayScalar>: Hashable, Sendable {
     ///   - normal: unit normal at the hit.
     ///   - viewDirection: the unit ray direction d (towards the hit).
     @inlinable
+    @_specialize(where Scalar == Double)
     public func shade(
       point: Vector3<Scalar>, normal: Vector3<Scalar>,
       viewDirection: Vector3<Scalar>, ambient: RGB<Scalar>,

@@ -7,6 +7,7 @@ extension Matrix4 {
   /// translations and scales by powers of two are exact. A projective matrix
   /// that sends p to w = 0 (a point at infinity) gives non-finite components.
   @inlinable
+  @_specialize(where Scalar == Double)
   public func transformPoint(_ p: Vector3<Scalar>) -> Vector3<Scalar> {
     let x = m00 * p.x + m01 * p.y + m02 * p.z + m03
     let y = m10 * p.x + m11 * p.y + m12 * p.z + m13
@@ -22,6 +23,7 @@ extension Matrix4 {
   /// matrix this is the w = 0 convention, not the derivative of
   /// `transformPoint`.
   @inlinable
+  @_specialize(where Scalar == Double)
   public func transformDirection(_ d: Vector3<Scalar>) -> Vector3<Scalar> {
     Vector3(
       m00 * d.x + m01 * d.y + m02 * d.z,

@@ -50,6 +50,8 @@ extension ImageStyle {
   /// [0, 1] to 0...255: truncation in the course style (its `UInt8(v·255)`),
   /// rounding in the mit style; values outside are clamped, NaN is 0.
   @inlinable @inline(__always)
+  @_specialize(where S == Double)
+  @_specialize(where S == Float)
   public func quantize<S: RayScalar>(_ value: S) -> UInt8 {
     guard value > 0 else { return 0 }
     guard value < 1 else { return 255 }

@@ -5,6 +5,11 @@ import PlatformSupport
 
 /// How raw depth, normals and colour become 8-bit pixels in each style (the
 /// two conventions measured from the course's images; see the README).
+///
+/// The row functions are prespecialised (`@_specialize`): the pipeline calls
+/// them from another module, where a `package` generic runs unspecialised,
+/// looking up generic metadata for every pixel (5 % of a course-engine
+/// render of the bunny, and a shared cache every thread consults).
 extension ImageStyle {
   /// Course: 255 − ⌊255·(t − near)/(far − near)⌋, near white, misses and t
   /// beyond the range black. Mit: (t − near)/(far − near) clamped, near
@@ -16,6 +21,8 @@ extension ImageStyle {
   }
 
   /// `depthImage` a row at a time, for the `range` that `depthRange` gave.
+  @_specialize(where S == Double)
+  @_specialize(where S == Float)
   package func depthRows<S: RayScalar>(
     _ buffers: RenderBuffers<S>, range: ClosedRange<Double>?
   ) -> PixelRows {
@@ -64,6 +71,8 @@ extension ImageStyle {
   }
 
   /// `normalImage` a row at a time.
+  @_specialize(where S == Double)
+  @_specialize(where S == Float)
   package func normalRows<S: RayScalar>(_ buffers: RenderBuffers<S>)
     -> PixelRows
   {
@@ -84,6 +93,8 @@ extension ImageStyle {
   }
 
   /// `colorImage` a row at a time.
+  @_specialize(where S == Double)
+  @_specialize(where S == Float)
   package func colorRows<S: RayScalar>(_ buffers: RenderBuffers<S>)
     -> PixelRows
   {

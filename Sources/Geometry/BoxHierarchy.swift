@@ -1,7 +1,3 @@
-import Geometry
-import SceneDescription
-
-
 /// A binary tree of boxes over a list of objects' boxes (a mesh's
 /// triangles, a large group's objects): each node's box holds its
 /// children's, each leaf names a few objects, and a ray visits only the
@@ -9,21 +5,22 @@ import SceneDescription
 ///
 /// Built by splitting the objects at the median of their centres along the
 /// widest axis, until at most `leafSize` remain; about 2n/`leafSize` nodes.
-struct BoxHierarchy: Sendable {
-  private struct Node {
-    var box: BoundingBox
+public struct BoxHierarchy: Sendable {
+  @usableFromInline
+  struct Node: Sendable {
+    @usableFromInline var box: BoundingBox
     /// A leaf: its objects are `order[first..<first + count]`. Otherwise
     /// (count 0) its children are the nodes `first` and `first + 1`.
-    var first: Int
-    var count: Int
+    @usableFromInline var first: Int
+    @usableFromInline var count: Int
   }
 
-  private var nodes: [Node] = []
+  @usableFromInline var nodes: [Node] = []
   /// The objects' indices, leaf by leaf.
-  private var order: [Int]
+  @usableFromInline var order: [Int]
   private static let leafSize = 4
 
-  init(boxes: [BoundingBox]) {
+  public init(boxes: [BoundingBox]) {
     order = Array(boxes.indices)
     guard !boxes.isEmpty else { return }
     let centers = boxes.map(\.center)
@@ -60,18 +57,21 @@ struct BoxHierarchy: Sendable {
   }
 
   /// The box of everything, or nil for no objects.
-  var bounds: BoundingBox? { nodes.first?.box }
+  public var bounds: BoundingBox? { nodes.first?.box }
 
   /// Calls `body` with every object whose leaf's box the ray meets in
   /// (0, `limit()`), `limit` asked again at each node, as the nearest hit
   /// so far shrinks it.
-  func forEachCandidate(
+  @inlinable
+  public func forEachCandidate(
     _ ray: Ray<Double>, before limit: () -> Double, _ body: (Int) -> Void
   ) {
     guard !nodes.isEmpty else { return }
     let reciprocal = Vector3(
       1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z)
-    var stack = [0]
+    var stack: [Int] = []
+    stack.reserveCapacity(64)
+    stack.append(0)
     while let index = stack.popLast() {
       let node = nodes[index]
       guard
@@ -83,7 +83,9 @@ struct BoxHierarchy: Sendable {
           body(member)
         }
       } else {
-        stack += [node.first, node.first + 1]
+        // One at a time: `+= [a, b]` allocated an array at every node.
+        stack.append(node.first)
+        stack.append(node.first + 1)
       }
     }
   }
