@@ -16,8 +16,10 @@ public struct Group: Hittable {
     _ ray: Ray<Double>, after tMin: Double, before tMax: Double
   ) -> Hit<Double>? {
     var nearest: Hit<Double>?
-    for object in objects {
-      if let hit = object.intersect(
+    // By index: `for object in objects` would copy each object out of the
+    // list, counting a reference that every thread's rays share.
+    for index in objects.indices {
+      if let hit = objects[index].intersect(
         ray, after: tMin, before: nearest?.t ?? tMax)
       {
         nearest = hit

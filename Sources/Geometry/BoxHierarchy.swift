@@ -69,23 +69,33 @@ public struct BoxHierarchy: Sendable {
     guard !nodes.isEmpty else { return }
     let reciprocal = Vector3(
       1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z)
-    var stack: [Int] = []
-    stack.reserveCapacity(64)
-    stack.append(0)
-    while let index = stack.popLast() {
-      let node = nodes[index]
-      guard
-        node.box.isHit(
-          by: ray, reciprocal: reciprocal, after: 0, before: limit())
-      else { continue }
-      if node.count > 0 {
-        for member in order[node.first..<node.first + node.count] {
-          body(member)
+    // The nodes still to visit, on the thread's stack: a median split
+    // halves the objects at every level, so a path from the root has at
+    // most log₂ n < Int.bitWidth inner nodes, and the walk below never
+    // holds more than one pending node per level plus the current pair.
+    withUnsafeTemporaryAllocation(
+      of: Int.self, capacity: Int.bitWidth + 2
+    ) { stack in
+      var count = 1
+      stack[0] = 0
+      while count > 0 {
+        count -= 1
+        let node = nodes[stack[count]]
+        guard
+          node.box.isHit(
+            by: ray, reciprocal: reciprocal, after: 0, before: limit())
+        else { continue }
+        if node.count > 0 {
+          // By position: a slice of `order` would count a reference to
+          // its storage, which every thread's rays share.
+          for position in node.first..<node.first + node.count {
+            body(order[position])
+          }
+        } else {
+          stack[count] = node.first
+          stack[count + 1] = node.first + 1
+          count += 2
         }
-      } else {
-        // One at a time: `+= [a, b]` allocated an array at every node.
-        stack.append(node.first)
-        stack.append(node.first + 1)
       }
     }
   }
