@@ -23,9 +23,12 @@ public struct Plane: Hittable {
   public func intersect(
     _ ray: Ray<Double>, after tMin: Double, before tMax: Double
   ) -> Hit<Double>? {
+    // BEGIN SOLUTION week 1: camera and planes — the t where n·(o + t·d) = d
+    //   if it lies in (tMin, tMax), with the plane's own normal
     let t = (offset - normal.dot(ray.origin)) / normal.dot(ray.direction)
     guard tMin < t && t < tMax else { return nil }
     return Hit(t: t, normal: normal, materialIndex: materialIndex)
+    // END SOLUTION
   }
 
   /// A plane has no bound.

@@ -33,6 +33,8 @@ public struct Sphere: Hittable {
   public func intersect(
     _ ray: Ray<Double>, after tMin: Double, before tMax: Double
   ) -> Hit<Double>? {
+    // BEGIN SOLUTION week 2: spheres and normals — the nearest root of
+    //   |o + t·d − c|² = r² in (tMin, tMax) and the outward unit normal there
     let d = ray.direction
     let f = ray.origin - center  // from the centre to the ray's origin
     let a = d.dot(d)
@@ -48,6 +50,7 @@ public struct Sphere: Hittable {
     guard tMin < t && t < tMax else { return nil }
     let normal = (f + d * t).normalized()
     return Hit(t: t, normal: normal, materialIndex: materialIndex)
+    // END SOLUTION
   }
 
   public var boundingBox: BoundingBox? {

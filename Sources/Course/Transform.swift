@@ -26,6 +26,9 @@ public struct Transform: Hittable {
   public func intersect(
     _ ray: Ray<Double>, after tMin: Double, before tMax: Double
   ) -> Hit<Double>? {
+    // BEGIN SOLUTION week 4: transforms — the ray taken into the object's
+    //   space by M⁻¹, the object's hit there, its normal brought back by
+    //   (M⁻¹)ᵀ and normalised
     let local = Ray(
       origin: inverse.transformPoint(ray.origin),
       direction: inverse.transformDirection(ray.direction))
@@ -35,6 +38,7 @@ public struct Transform: Hittable {
     hit.normal = inverse.transposed().transformDirection(hit.normal)
       .normalized()
     return hit
+    // END SOLUTION
   }
 
   public var boundingBox: BoundingBox? {

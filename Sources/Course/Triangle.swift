@@ -40,6 +40,10 @@ public struct Triangle: Hittable {
   public func intersect(
     _ ray: Ray<Double>, after tMin: Double, before tMax: Double
   ) -> Hit<Double>? {
+    // BEGIN SOLUTION week 5: triangles and meshes — β, γ and t by Cramer's
+    //   rule, a hit when β ≥ 0, γ ≥ 0, β + γ ≤ 1 and t in (tMin, tMax); the
+    //   winding's normal or the vertex normals' interpolation, normalised;
+    //   the interpolated texture coordinates
     let edge1 = b - a
     let edge2 = c - a
     let s = ray.origin - a
@@ -67,6 +71,7 @@ public struct Triangle: Hittable {
         t0.v * alpha + t1.v * beta + t2.v * gamma)
     }
     return hit
+    // END SOLUTION
   }
 
   public var boundingBox: BoundingBox? { BoundingBox(around: a, b, c) }

@@ -21,6 +21,9 @@ public struct TriangleMesh: Hittable {
   public func intersect(
     _ ray: Ray<Double>, after tMin: Double, before tMax: Double
   ) -> Hit<Double>? {
+    // BEGIN SOLUTION week 5: triangles and meshes — the nearest hit of the
+    //   triangles the hierarchy hands over, each asked for a hit before the
+    //   nearest so far
     var nearest: Hit<Double>?
     hierarchy.forEachCandidate(ray, before: { nearest?.t ?? tMax }) {
       index in
@@ -31,6 +34,7 @@ public struct TriangleMesh: Hittable {
       }
     }
     return nearest
+    // END SOLUTION
   }
 
   public var boundingBox: BoundingBox? { hierarchy.bounds }
