@@ -81,18 +81,20 @@ struct View: Sendable {
   }
 
   /// The colour seen along `ray`: the background on a miss, else the hit's
-  /// material lit by every light (Phong, `Material.shade`). A textured
-  /// material's diffuse colour is the texel at the hit's texture
+  /// material lit by every light (Phong, `Material.Surface.shade`). A
+  /// textured material's diffuse colour is the texel at the hit's texture
   /// coordinates, where the object has them.
   func color(_ ray: Ray<Double>, _ hit: Hit<Double>?) -> RGB<Double> {
     guard let hit else { return scene.background }
-    var material = scene.materials[hit.materialIndex]
+    // The material's colours (its `surface`: the texture's file name left
+    // behind, so no string is counted for every pixel).
+    var surface = scene.materials[hit.materialIndex].surface
     if !textures.isEmpty, let texture = textures[hit.materialIndex],
       let coordinate = hit.textureCoordinate
     {
-      material.diffuse = texture.color(at: coordinate)
+      surface.diffuse = texture.color(at: coordinate)
     }
-    return material.shade(
+    return surface.shade(
       point: ray.point(at: hit.t), normal: hit.normal,
       viewDirection: ray.direction, ambient: scene.ambient,
       lights: scene.lights, attenuate: settings.attenuatesLights)

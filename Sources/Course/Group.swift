@@ -16,12 +16,12 @@ public struct Group: Hittable {
     _ ray: Ray<Double>, after tMin: Double, before tMax: Double
   ) -> Hit<Double>? {
     var nearest: Hit<Double>?
-    // By index: `for object in objects` would copy each object out of the
-    // list, counting a reference that every thread's rays share.
     for index in objects.indices {
-      if let hit = objects[index].intersect(
-        ray, after: tMin, before: nearest?.t ?? tMax)
-      {
+      // By index, the limit first: the object is then asked where it lies
+      // in the list (`for object in objects` would copy it out, counting a
+      // reference that every thread's rays share).
+      let limit = nearest?.t ?? tMax
+      if let hit = objects[index].intersect(ray, after: tMin, before: limit) {
         nearest = hit
       }
     }
