@@ -30,6 +30,8 @@ extension ImageStyle {
   /// A normal's pixel: |n| per component (course) or (n + 1)/2 (mit),
   /// quantized.
   @inlinable @inline(__always)
+  @_specialize(where S == Double)
+  @_specialize(where S == Float)
   public func pixel<S: RayScalar>(normal: Vector3<S>) -> (UInt8, UInt8, UInt8) {
     switch self {
     case .course:
@@ -42,6 +44,8 @@ extension ImageStyle {
 
   /// A colour's pixel: each component quantized.
   @inlinable @inline(__always)
+  @_specialize(where S == Double)
+  @_specialize(where S == Float)
   public func pixel<S: RayScalar>(_ value: Vector3<S>) -> (UInt8, UInt8, UInt8)
   {
     (quantize(value.x), quantize(value.y), quantize(value.z))
@@ -90,6 +94,8 @@ public struct Quantization: Sendable {
 
   /// A colour's pixel, each component quantised.
   @inlinable @inline(__always)
+  @_specialize(where S == Double)
+  @_specialize(where S == Float)
   public func pixel<S: RayScalar>(_ value: Vector3<S>) -> (UInt8, UInt8, UInt8)
   {
     style.pixel(value)

@@ -106,6 +106,8 @@ extension ImageStyle {
   }
 
   /// Rows of `values`, one pixel each.
+  @_specialize(where S == Double, Value == Vector3<Double>)
+  @_specialize(where S == Float, Value == Vector3<Float>)
   private static func rows<S: RayScalar, Value: Sendable>(
     _ values: [Value], _ buffers: RenderBuffers<S>,
     _ pixel: @escaping @Sendable (Value) -> (UInt8, UInt8, UInt8)
