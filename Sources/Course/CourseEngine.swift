@@ -72,12 +72,16 @@ struct View: Sendable {
   /// The ray from the eye through the centre of pixel (column, row), where
   /// the image style puts it on the screen [−1, 1]² (docs/CONVENTIONS.md).
   func ray(column: Int, row: Int) -> Ray<Double> {
+    // BEGIN SOLUTION week 1: camera and planes — the ray from the eye
+    //   through the pixel's screen point (settings.screen), its direction
+    //   x·u + (H/W)·y·v + D·w normalised (camera.rayDirection)
     let x: Double = settings.screen.x(column: column)
     let y: Double = settings.screen.y(row: row)
     let aspect = Double(settings.height) / Double(settings.width)
     return Ray(
       origin: camera.center,
       direction: camera.rayDirection(x: x, y: y, aspect: aspect))
+    // END SOLUTION
   }
 
   /// The colour seen along `ray`: the background on a miss, else the hit's
@@ -85,6 +89,9 @@ struct View: Sendable {
   /// textured material's diffuse colour is the texel at the hit's texture
   /// coordinates, where the object has them.
   func color(_ ray: Ray<Double>, _ hit: Hit<Double>?) -> RGB<Double> {
+    // BEGIN SOLUTION week 3: shading — the background on a miss, else
+    //   the hit's material (a texture's texel as its diffuse colour) lit by
+    //   the ambient light and every light (Material.Surface.shade)
     guard let hit else { return scene.background }
     // The material's colours (its `surface`: the texture's file name left
     // behind, so no string is counted for every pixel).
@@ -98,6 +105,7 @@ struct View: Sendable {
       point: ray.point(at: hit.t), normal: hit.normal,
       viewDirection: ray.direction, ambient: scene.ambient,
       lights: scene.lights, attenuate: settings.attenuatesLights)
+    // END SOLUTION
   }
 
   /// The mean colour of the pixel's jittered samples (`PixelSamples`).

@@ -15,6 +15,9 @@ public struct Group: Hittable {
   public func intersect(
     _ ray: Ray<Double>, after tMin: Double, before tMax: Double
   ) -> Hit<Double>? {
+    // BEGIN SOLUTION week 1: camera and planes — the nearest hit of the
+    //   objects in (tMin, tMax), each asked for a hit before the nearest so
+    //   far (a tie goes to the object listed first)
     var nearest: Hit<Double>?
     for index in objects.indices {
       // By index, the limit first: the object is then asked where it lies
@@ -26,6 +29,7 @@ public struct Group: Hittable {
       }
     }
     return nearest
+    // END SOLUTION
   }
 
   /// The union of the objects' boxes; nil when one has no bound.
