@@ -9,11 +9,17 @@ import Numerics
 import PlatformSupport
 
 extension Render {
-  /// `--check`: each engine renders once, every buffer kept; the files
-  /// given are written from the course engine's, and the two compared
-  /// output by output.
+  /// `--check`: first the course's shapes the scene uses, asked with rays
+  /// whose answers are known (`ShapeProbes`), and nothing rendered when
+  /// one fails; then each engine renders once, every buffer kept; the
+  /// files given are written from the course engine's, and the two
+  /// compared output by output.
   func checkEngines(_ scene: Scene, _ plan: Plan) throws {
     let png = try preflight(plan)
+    let probes = ShapeProbes.check(scene)
+    for line in probes.lines { printOutput(line) }
+    if !probes.passes { throw ExitCode.failure }
+    if !probes.lines.isEmpty { printOutput() }
     var request = plan.request
     let requested = plan.files.reduce(into: RenderOutputs()) {
       $0.formUnion($1.kind)
