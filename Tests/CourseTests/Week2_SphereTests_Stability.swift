@@ -3,12 +3,12 @@ import Geometry
 import SceneDescription
 import XCTest
 
-/// The sphere's stability cases, a group of their own: what the slide's
+/// Week 2's stability cases, a group of their own: what the slide's
 /// formula (a = d·d, b = 2 f·d, c = f·f − r², (−b ± √(b² − 4ac)) / 2a)
 /// loses and the stable form keeps. A correct textbook answer passes
-/// `SphereTests` and fails these; docs/ACCURACY.md says why and what to
-/// write instead.
-final class SphereTests_Stability: XCTestCase {
+/// `Week2_SphereTests` and fails these: it is not wrong, it loses digits.
+/// docs/ACCURACY.md says why and what to write instead.
+final class Week2_SphereTests_Stability: XCTestCase {
   /// A small sphere far away (10³ to 10⁶ radii): b² and 4ac are nearly
   /// equal, so b² − 4ac keeps only the digits they do not share, and t
   /// loses half of its own (relative error near 10⁻¹⁰ at 10⁶ radii). The
@@ -31,9 +31,12 @@ final class SphereTests_Stability: XCTestCase {
         error, 2 * exact.ulp,
         "stability: t = \(found.t), not \(exact) (L = \(distance), "
           + "r = \(radius); off by \(error / exact.ulp) ulps). b² − 4ac "
-          + "cancels for a small far sphere: compute it as "
-          + "a·(r − |v|)(r + |v|), v = f − d·(f·d)/(d·d), and the roots as "
-          + "q/a and c/q (docs/ACCURACY.md, the stable method)")
+          + "cancels for a small far sphere: b² and 4ac agree in their "
+          + "leading digits, and their difference keeps only the rest. "
+          + "It equals 4a·(r − |v|)(r + |v|), v = f − d·(f·d)/(d·d): "
+          + "compute it so, and the roots as q/a and c/q (docs/ACCURACY.md, "
+          + "the stable method). The lecture's cases (Week2_SphereTests) "
+          + "do not need it")
       XCTAssertEqual(found.normal, Vector3(0, 0, 1))
     }
   }

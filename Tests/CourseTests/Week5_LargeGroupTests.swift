@@ -4,10 +4,11 @@ import XCTest
 
 @testable import Course
 
-/// The course's groups: a group of many objects is held in a hierarchy of
-/// boxes (`BoxedGroup`), and finds exactly what the list's loop finds,
-/// ties included.
-final class GroupTests: XCTestCase {
+/// Week 5, triangles and meshes: a group of many objects is held in a
+/// hierarchy of boxes (`BoxedGroup`, given, not written by the student),
+/// as a mesh's triangles are, and finds exactly what the list's loop
+/// (`Group.intersect`, week 1) finds, ties included.
+final class Week5_LargeGroupTests: XCTestCase {
   func testBoxedGroup_FindsWhatTheListFinds() {
     var generator = SplitMix64(seed: 11)
     func random(_ range: ClosedRange<Double>) -> Double {
