@@ -275,6 +275,7 @@ extension ShapeProbe {
 
   /// A number as it reads best: whole numbers without ".0".
   static func text(_ x: Double) -> String {
+    if x.isNaN { return "NaN" }  // not "-nan", as Swift prints some
     if x == x.rounded(), abs(x) < 1e15 { return "\(Int(x))" }
     return "\(x)"
   }
@@ -283,7 +284,8 @@ extension ShapeProbe {
   /// ".0"): the probes' vectors differ in the second digit or sooner.
   static func text(_ v: Vector3<Double>) -> String {
     func part(_ x: Double) -> String {
-      x == x.rounded() && abs(x) < 1e15 ? "\(Int(x))" : "\(Float(x))"
+      if x.isNaN { return "NaN" }
+      return x == x.rounded() && abs(x) < 1e15 ? "\(Int(x))" : "\(Float(x))"
     }
     return "(\(part(v.x)), \(part(v.y)), \(part(v.z)))"
   }
