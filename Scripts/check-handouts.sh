@@ -120,7 +120,7 @@ for week in $weeks; do
   load "$handout"
   rm -rf "$handout"
   build "the handout of week $week" || continue
-  line="week $week's handout (after $((SECONDS - start)) s):"
+  line="week $week's handout (at $((SECONDS - start)) s):"
   problems=()
   for earlier in $weeks; do
     [ "$earlier" -lt "$week" ] || break
@@ -145,10 +145,12 @@ done
 
 load "$root"
 if build "the model answer"; then
-  line="the model answer (after $((SECONDS - start)) s):"
+  line="the model answer (at $((SECONDS - start)) s):"
+  separator=""
   for week in $weeks; do
     result=$(run_week "$week")
-    line+=" week $week $result;"
+    line+="$separator week $week $result"
+    separator=";"
     [ "$result" = passes ] ||
       fail "the model answer: week $week's tests: $result" \
         "($scratch/week$week.log)"
