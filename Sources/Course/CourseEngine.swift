@@ -93,8 +93,7 @@ struct View: Sendable {
     //   the hit's material (a texture's texel as its diffuse colour) lit by
     //   the ambient light and every light (Material.Surface.shade)
     guard let hit else { return scene.background }
-    // The material's colours (its `surface`: the texture's file name left
-    // behind, so no string is counted for every pixel).
+    // Its colours only (no file name: no string counted per pixel).
     var surface = scene.materials[hit.materialIndex].surface
     if !textures.isEmpty, let texture = textures[hit.materialIndex],
       let coordinate = hit.textureCoordinate

@@ -1,6 +1,4 @@
 import Geometry
-import SceneDescription
-
 
 /// A list of objects hit as one (the course's `Group`).
 public struct Group: Hittable {

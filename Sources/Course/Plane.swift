@@ -1,6 +1,4 @@
 import Geometry
-import SceneDescription
-
 
 /// A plane: the points P with n·P = d (the text format's `normal` and
 /// `offset`).

@@ -1,6 +1,4 @@
 import Geometry
-import SceneDescription
-
 
 /// A sphere: every point at distance `radius` from `center`.
 public struct Sphere: Hittable {

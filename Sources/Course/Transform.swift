@@ -1,6 +1,4 @@
 import Geometry
-import SceneDescription
-
 
 /// An object placed by a matrix M (the course's `Transform`): the object's
 /// points P appear at M·P.

@@ -1,6 +1,4 @@
 import Geometry
-import SceneDescription
-
 
 /// A triangle (a, b, c), with a normal and texture coordinates at each
 /// vertex when its mesh gives them.

@@ -1,6 +1,4 @@
 import Geometry
-import SceneDescription
-
 
 /// The triangles of a mesh file (the course's `TriangleMesh`), hit through
 /// a hierarchy of boxes built once (`BoxHierarchy`), as the course's mesh

@@ -6,8 +6,7 @@
 /// Built by splitting the objects at the median of their centres along the
 /// widest axis, until at most `leafSize` remain; about 2n/`leafSize` nodes.
 public struct BoxHierarchy: Sendable {
-  @usableFromInline
-  struct Node: Sendable {
+  @usableFromInline struct Node: Sendable {
     @usableFromInline var box: BoundingBox
     /// A leaf: its objects are `order[first..<first + count]`. Otherwise
     /// (count 0) its children are the nodes `first` and `first + 1`.
@@ -69,10 +68,8 @@ public struct BoxHierarchy: Sendable {
     guard !nodes.isEmpty else { return }
     let reciprocal = Vector3(
       1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z)
-    // The nodes still to visit, on the thread's stack: a median split
-    // halves the objects at every level, so a path from the root has at
-    // most log₂ n < Int.bitWidth inner nodes, and the walk below never
-    // holds more than one pending node per level plus the current pair.
+    // The nodes to visit, on the thread's stack: median splits make at
+    // most log₂ n < Int.bitWidth levels, one pending node each, plus two.
     withUnsafeTemporaryAllocation(
       of: Int.self, capacity: Int.bitWidth + 2
     ) { stack in
@@ -86,8 +83,7 @@ public struct BoxHierarchy: Sendable {
             by: ray, reciprocal: reciprocal, after: 0, before: limit())
         else { continue }
         if node.count > 0 {
-          // By position: a slice of `order` would count a reference to
-          // its storage, which every thread's rays share.
+          // By position: a slice would count a reference every ray shares.
           for position in node.first..<node.first + node.count {
             body(order[position])
           }

@@ -235,33 +235,6 @@ extension Matrix4 {
       0, 0, 0, 1)
   }
 
-  /// Rotation by `degrees` about `axis` (any non-zero length; it is
-  /// normalised), right-handed: looking down the axis towards the origin,
-  /// the rotation is counter-clockwise. Rows c·I + (1 − c)·a·aᵀ + s·[a]×
-  /// (Rodrigues): about the x, y and z axes, `rotationX`, `Y` and `Z` to
-  /// within an ulp of 1 on the diagonal.
-  /// A zero or non-finite axis gives NaN entries.
-  public static func rotation(
-    axis: Vector3<Scalar>, degrees: Scalar
-  ) -> Matrix4 {
-    // Scaled to a largest component of 1 first: no square overflows or
-    // underflows, whatever the axis's length.
-    let largest = axis.maxMagnitude
-    guard largest > 0, largest.isFinite else {
-      return Matrix4(
-        .nan, .nan, .nan, 0, .nan, .nan, .nan, 0, .nan, .nan, .nan, 0,
-        0, 0, 0, 1)
-    }
-    let a = (axis / largest).normalized()
-    let (c, s) = cosineAndSine(degrees: degrees)
-    let k = 1 - c
-    return Matrix4(
-      c + k * a.x * a.x, k * a.x * a.y - s * a.z, k * a.x * a.z + s * a.y, 0,
-      k * a.y * a.x + s * a.z, c + k * a.y * a.y, k * a.y * a.z - s * a.x, 0,
-      k * a.z * a.x - s * a.y, k * a.z * a.y + s * a.x, c + k * a.z * a.z, 0,
-      0, 0, 0, 1)
-  }
-
   /// cos and sin of an angle in degrees, with the angle reduced exactly
   /// before converting to radians: r = degrees mod 360 (`remainder` is
   /// exact), then r = 90·q + ρ with |ρ| ≤ 45 (exact: the subtraction's
@@ -270,7 +243,9 @@ extension Matrix4 {
   /// exactly 0 and ±1, where cos(90·π/180) would give 6e−17, and the error
   /// of ρ·π/180 stays relative to ρ rather than to the whole angle.
   @usableFromInline
-  static func cosineAndSine(degrees: Scalar) -> (cos: Scalar, sin: Scalar) {
+  package static func cosineAndSine(degrees: Scalar)
+    -> (cos: Scalar, sin: Scalar)
+  {
     guard degrees.isFinite else { return (.nan, .nan) }
     let reduced = degrees.remainder(dividingBy: 360)
     let quadrant = (reduced / 90).rounded()
