@@ -24,8 +24,12 @@ extension Render {
     let requested = plan.files.reduce(into: RenderOutputs()) {
       $0.formUnion($1.kind)
     }
-    // Every buffer is kept, for the report of the first differing pixel.
-    request.settings.outputs = [.depth, .normals, .shaded]
+    let compared: RenderOutputs =
+      requested.isEmpty ? [.shaded, .normals, .depth] : requested
+    // Depth and normals are always kept, for the report of the first
+    // differing pixel; the shaded image only when it is compared (so that
+    // `--check --depth d.png` needs no shading code: week 2's handout).
+    request.settings.outputs = compared.union([.depth, .normals])
     request.settings.quantizedOutputs = []
     request.repeats = 0
     let textures: [Texture?]
@@ -50,7 +54,7 @@ extension Render {
     }
     let check = EngineCheck(
       scene: scene, course: course, fast: fast, style: settings.style,
-      outputs: requested.isEmpty ? [.shaded, .normals, .depth] : requested,
+      outputs: compared,
       depthRange: plan.depthRange,
       tolerance: ImageComparison.defaultTolerance(eightBit: true)
     ) { column, row in
