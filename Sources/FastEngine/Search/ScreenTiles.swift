@@ -185,8 +185,11 @@ struct TileLists<Entry> {
   /// then).
   ///
   /// From 2¹⁴ primitives, with `threads` above 1, the boxes are computed
-  /// and the entries written on two threads, each over half of them; tile by tile the first half's
-  /// entries come first, so every tile lists its primitives in order.
+  /// and the entries written in parts of at least 2¹³ primitives, one per
+  /// thread; tile by tile each part's entries come before the next part's,
+  /// so every tile lists its primitives in order, whatever the threads.
+  /// (Two parts at most, as it was, held a 10⁶-triangle render to 3× on
+  /// 16 cores: docs/PERFORMANCE.md, "Scaling with cores".)
   mutating func sort(
     count: Int, threads: Int, areaLimit: Double,
     box: (Int) -> PixelBox,
@@ -196,7 +199,8 @@ struct TileLists<Entry> {
     let (tileWidth, tileHeight) = (
       ScreenTilesGeometry.tileWidth, Renderer.rowsPerBatch
     )
-    let parts = count >= 1 << 14 ? Swift.max(1, Swift.min(threads, 2)) : 1
+    let parts =
+      count >= 1 << 14 ? Swift.max(1, Swift.min(threads, count >> 13)) : 1
     // Pass one: each primitive's box, and per part how many entries each
     // tile gets from it, so that pass two writes every entry into place.
     var tileCounts = [[Int32]](repeating: [], count: parts)
