@@ -144,7 +144,7 @@ let package = Package(
   //   SceneIO           the scene, mesh and image readers and writers
   //   FastEngine        the fast engine: records, search structures
   //   Pipeline          read, check, render with an engine, encode, commit
-  //   Measurement       `raytrace report`, `bench` and `compare`
+  //   Measurement       `raytrace report`, `bench`, `compare`, the check
   //   raytrace          the executable: arguments and messages
   // Course needs only the leaf and the description: editing it rebuilds
   // only it, its tests, the pipeline and the executable.
