@@ -99,6 +99,23 @@ run_week() {
   fi
 }
 
+# The scratch manifest copies Package.swift's settings for the course's
+# closure: any drift fails the check (compared through dump-package).
+load "$root"
+python3 - <(swift package dump-package) \
+  <(swift package --package-path "$package" dump-package) <<'PY' ||
+import json, sys
+real, scratch = (json.load(open(path)) for path in sys.argv[1:3])
+def settings(manifest):
+    return {t["name"]: t.get("settings", []) for t in manifest["targets"]}
+real, scratch = settings(real), settings(scratch)
+differ = [name for name in ("Geometry", "SceneDescription", "Course",
+                            "CourseTests") if real.get(name) != scratch.get(name)]
+if differ:
+    sys.exit("settings differ from Package.swift's for " + ", ".join(differ))
+PY
+  fail "Scripts/handouts/Package.swift is out of step with Package.swift"
+
 weeks=$(python3 Scripts/handout.py list . | cut -f1 | sort -n | uniq)
 [ -n "$weeks" ] || { echo "check-handouts: no week is marked"; exit 1; }
 for week in $weeks; do

@@ -7,7 +7,8 @@ import PackageDescription
 // with the settings the repository's Package.swift gives them, so that
 // each week's handout is built and tested without the rest of the
 // package. The script copies the sources in beside this file; keep the
-// settings below in step with Package.swift's.
+// settings below in step with Package.swift's (check-handouts.sh fails
+// when they drift).
 let environment = ProcessInfo.processInfo.environment
 
 func variable(_ name: String) -> String? {
