@@ -15,7 +15,7 @@ package struct CameraRay<Scalar: RayScalar>: Sendable {
   package var inverseLengthSquared: Scalar
 
   @inlinable
-  public init(origin: Vector3<Scalar>, direction: Vector3<Scalar>) {
+  package init(origin: Vector3<Scalar>, direction: Vector3<Scalar>) {
     self.origin = origin
     self.direction = direction
     lengthSquared = direction.lengthSquared

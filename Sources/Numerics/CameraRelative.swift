@@ -9,10 +9,12 @@ import PlatformSupport
 /// products in |p|² − r² and d − n·eye are the same for every pixel: computing
 /// them once, carefully, both removes them from the per-ray loop and removes
 /// the cancellations that ruin planets and far-from-origin scenes.
-public enum CameraRelative {
+@usableFromInline
+package enum CameraRelative {
   /// p = centre − eye rounded to nearest, and c = |p|² − r² with no
   /// cancellation beyond the final rounding.
-  public static func sphere<Input: RayScalar, S: RayScalar>(
+  @usableFromInline
+  package static func sphere<Input: RayScalar, S: RayScalar>(
     center: Vector3<Input>, radius: Input, eye: Vector3<Input>,
     as: S.Type = S.self
   ) -> (offset: Vector3<S>, c: S) {
@@ -60,7 +62,8 @@ public enum CameraRelative {
 
   /// k = offset − n·eye, the signed distance from the eye to the plane
   /// n·P = offset (negated), evaluated without cancellation.
-  public static func plane<Input: RayScalar, S: RayScalar>(
+  @usableFromInline
+  package static func plane<Input: RayScalar, S: RayScalar>(
     normal: Vector3<Input>, offset: Input, eye: Vector3<Input>,
     as: S.Type = S.self
   ) -> S {
@@ -100,7 +103,8 @@ public enum CameraRelative {
   }
 
   /// sum + error (exact, |error| ≤ ulp(sum)/2) in S, rounded once.
-  public static func narrowed<Input: RayScalar, S: RayScalar>(
+  @usableFromInline
+  package static func narrowed<Input: RayScalar, S: RayScalar>(
     _ sum: Input, _ error: Input
   ) -> S {
     if S.significandBitCount > Input.significandBitCount {

@@ -10,10 +10,11 @@ import PlatformSupport
 /// They run where cancellation would otherwise lose every digit: the
 /// camera-relative sphere constants |p|² − r² of a planet seen from one unit
 /// above it, and the denominator n·d of a plane seen at a grazing angle.
-public enum Compensated {
+@usableFromInline
+package enum Compensated {
   /// s + e == a + b exactly, with s = fl(a + b) (Knuth's TwoSum, no branch).
   @inlinable
-  public static func twoSum<S: RayScalar>(_ a: S, _ b: S) -> (sum: S, error: S)
+  package static func twoSum<S: RayScalar>(_ a: S, _ b: S) -> (sum: S, error: S)
   {
     let s = a + b
     let bVirtual = s - a
@@ -31,7 +32,7 @@ public enum Compensated {
   /// vectors, uses `splitProduct` (docs/PERFORMANCE.md, "The cost of
   /// working across the whole range").
   @inlinable @inline(__always)
-  public static func twoProduct<S: RayScalar>(
+  package static func twoProduct<S: RayScalar>(
     _ a: S, _ b: S
   ) -> (product: S, error: S) {
     if S.self == Float.self {
@@ -48,7 +49,7 @@ public enum Compensated {
   /// error term is not subnormal; for Float, `twoProduct`'s Double
   /// product. Outside that range use `twoProduct`.
   @inlinable @inline(__always)
-  public static func splitProduct<S: RayScalar>(
+  package static func splitProduct<S: RayScalar>(
     _ a: S, _ b: S
   ) -> (product: S, error: S) {
     if S.self == Float.self { return twoProduct(a, b) }
@@ -86,7 +87,7 @@ public enum Compensated {
   /// type's largest exponent) and products above the subnormal range, as
   /// the unit normals and directions of the render's planes are.
   @inlinable
-  public static func dot<S: RayScalar>(
+  package static func dot<S: RayScalar>(
     _ a: Vector3<S>, _ b: Vector3<S>
   ) -> S {
     let px = splitProduct(a.x, b.x)
@@ -100,7 +101,7 @@ public enum Compensated {
 
   /// Σ terms, as if evaluated in twice the precision and rounded (Sum2).
   @inlinable
-  public static func sum<Terms: Sequence>(_ terms: Terms) -> Terms.Element
+  package static func sum<Terms: Sequence>(_ terms: Terms) -> Terms.Element
   where Terms.Element: RayScalar {
     let pair = sumPair(terms)
     return pair.sum + pair.error
@@ -110,7 +111,7 @@ public enum Compensated {
   /// as if evaluated in twice the precision (Sum2 with its last addition
   /// renormalised by twoSum).
   @inlinable
-  public static func sumPair<Terms: Sequence>(
+  package static func sumPair<Terms: Sequence>(
     _ terms: Terms
   ) -> (sum: Terms.Element, error: Terms.Element)
   where Terms.Element: RayScalar {
@@ -130,7 +131,7 @@ public enum Compensated {
   /// ulp(sum)/2 cannot move sum across a midpoint of S, which lies a whole
   /// ulp of Input away or more, so S(sum) is already correct.
   @inlinable
-  public static func narrow<Input: RayScalar, S: RayScalar>(
+  package static func narrow<Input: RayScalar, S: RayScalar>(
     _ sum: Input, _ error: Input, to _: S.Type = S.self
   ) -> S {
     let rounded = S(sum)

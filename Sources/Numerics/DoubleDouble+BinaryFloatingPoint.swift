@@ -8,76 +8,83 @@ import PlatformSupport
 // fraction bits in a 128-bit raw significand.
 
 extension DoubleDouble: BinaryFloatingPoint {
-  public typealias RawSignificand = DoubleDoubleSignificand
-  public typealias RawExponent = UInt
-  public typealias Exponent = Int
-  public typealias Magnitude = DoubleDouble
-  public typealias Stride = DoubleDouble
+  @usableFromInline
+  package typealias RawSignificand = DoubleDoubleSignificand
+  @usableFromInline
+  package typealias RawExponent = UInt
+  @usableFromInline
+  package typealias Exponent = Int
+  @usableFromInline
+  package typealias Magnitude = DoubleDouble
+  @usableFromInline
+  package typealias Stride = DoubleDouble
   /// Double: a literal means the Double it spells (see the type's comment).
-  public typealias FloatLiteralType = Double
-  public typealias IntegerLiteralType = Int64
+  @usableFromInline
+  package typealias FloatLiteralType = Double
+  @usableFromInline
+  package typealias IntegerLiteralType = Int64
 
   @inlinable
-  public init(floatLiteral value: Double) { self.init(value) }
+  package init(floatLiteral value: Double) { self.init(value) }
 
   @inlinable
-  public init(integerLiteral value: Int64) { self.init(value) }
+  package init(integerLiteral value: Int64) { self.init(value) }
 
   // MARK: The format
 
-  @inlinable public static var exponentBitCount: Int { 11 }
+  @inlinable package static var exponentBitCount: Int { 11 }
   /// 105 fraction bits: 106 significant bits, the most any normalised pair
   /// holds for every value of a binade (see the type's comment).
-  @inlinable public static var significandBitCount: Int { 105 }
+  @inlinable package static var significandBitCount: Int { 105 }
 
   /// The 105 fraction bits' mask.
   @inlinable static var fractionMask: DoubleDoubleSignificand {
     DoubleDoubleSignificand(high: (1 << 41) - 1, low: .max)
   }
 
-  @inlinable public static var nan: DoubleDouble {
+  @inlinable package static var nan: DoubleDouble {
     DoubleDouble(uncheckedHi: .nan, lo: 0)
   }
-  @inlinable public static var signalingNaN: DoubleDouble {
+  @inlinable package static var signalingNaN: DoubleDouble {
     DoubleDouble(uncheckedHi: .signalingNaN, lo: 0)
   }
-  @inlinable public static var infinity: DoubleDouble {
+  @inlinable package static var infinity: DoubleDouble {
     DoubleDouble(uncheckedHi: .infinity, lo: 0)
   }
   /// 2¹⁰²⁴ − 2⁹⁷⁰ − 2⁹¹⁸: the largest pair whose `hi` does not round to
   /// infinity, short of the format's 2¹⁰²⁴ − 2⁹¹⁸ (see the type's comment).
-  @inlinable public static var greatestFiniteMagnitude: DoubleDouble {
+  @inlinable package static var greatestFiniteMagnitude: DoubleDouble {
     DoubleDouble(
       uncheckedHi: .greatestFiniteMagnitude, lo: 0x1.ffff_ffff_ffff_ep969)
   }
   /// 2⁻¹⁰²², Double's: below it `hi` is subnormal and `lo` zero.
-  @inlinable public static var leastNormalMagnitude: DoubleDouble {
+  @inlinable package static var leastNormalMagnitude: DoubleDouble {
     DoubleDouble(uncheckedHi: .leastNormalMagnitude, lo: 0)
   }
   /// 2⁻¹⁰⁷⁴, Double's: the format's own subnormals below it cannot be held.
-  @inlinable public static var leastNonzeroMagnitude: DoubleDouble {
+  @inlinable package static var leastNonzeroMagnitude: DoubleDouble {
     DoubleDouble(uncheckedHi: .leastNonzeroMagnitude, lo: 0)
   }
   /// π rounded toward zero to 106 bits, as FloatingPoint asks.
-  @inlinable public static var pi: DoubleDouble {
+  @inlinable package static var pi: DoubleDouble {
     DoubleDouble(
       uncheckedHi: 0x1.921f_b544_42d1_8p1, lo: 0x1.1a62_6331_45c0_6p-53)
   }
   /// 2⁻¹⁰⁵.
-  @inlinable public static var ulpOfOne: DoubleDouble {
+  @inlinable package static var ulpOfOne: DoubleDouble {
     DoubleDouble(uncheckedHi: 0x1p-105, lo: 0)
   }
 
   // MARK: Conversions
 
   @inlinable
-  public init(_ value: Float) { self.init(Double(value)) }
+  package init(_ value: Float) { self.init(Double(value)) }
 
   #if (arch(i386) || arch(x86_64)) && !os(Windows) && !os(Android)
     /// Exact within Double's exponent range (64 bits fit in 106); outside
     /// it overflows to infinity or loses the bits below 2⁻¹⁰⁷⁴.
     @inlinable
-    public init(_ value: Float80) {
+    package init(_ value: Float80) {
       let hi = Double(value)
       guard hi.isFinite, hi != 0 else {
         self.init(uncheckedHi: hi, lo: 0)
@@ -92,7 +99,7 @@ extension DoubleDouble: BinaryFloatingPoint {
   /// split into three Doubles (each remainder exact in the source's own
   /// format), then rounded to 106 bits.
   @inlinable
-  public init<Source: BinaryFloatingPoint>(_ value: Source) {
+  package init<Source: BinaryFloatingPoint>(_ value: Source) {
     if let value = value as? DoubleDouble {
       self = value
     } else if let value = value as? Double {
@@ -120,7 +127,7 @@ extension DoubleDouble: BinaryFloatingPoint {
 
   /// nil unless `value` converts and converts back unchanged (NaN: nil).
   @inlinable
-  public init?<Source: BinaryFloatingPoint>(exactly value: Source) {
+  package init?<Source: BinaryFloatingPoint>(exactly value: Source) {
     self.init(value)
     guard !value.isNaN, Source(self) == value else { return nil }
   }
@@ -128,7 +135,7 @@ extension DoubleDouble: BinaryFloatingPoint {
   /// Exact for integers of at most 106 significant bits, otherwise rounded
   /// to nearest even; beyond the range, infinity.
   @inlinable
-  public init<Source: BinaryInteger>(_ value: Source) {
+  package init<Source: BinaryInteger>(_ value: Source) {
     let magnitude = value.magnitude
     let width = Self.significantBitCount(magnitude)
     let result: DoubleDouble
@@ -165,23 +172,23 @@ extension DoubleDouble: BinaryFloatingPoint {
   }
 
   @inlinable
-  public func distance(to other: DoubleDouble) -> DoubleDouble {
+  package func distance(to other: DoubleDouble) -> DoubleDouble {
     other - self
   }
 
   @inlinable
-  public func advanced(by amount: DoubleDouble) -> DoubleDouble {
+  package func advanced(by amount: DoubleDouble) -> DoubleDouble {
     self + amount
   }
 
   @inlinable
-  public init(_ value: Int) {
+  package init(_ value: Int) {
     self.init(Int64(value))
   }
 
   /// nil unless `value` has at most 106 significant bits (and is in range).
   @inlinable
-  public init?<Source: BinaryInteger>(exactly value: Source) {
+  package init?<Source: BinaryInteger>(exactly value: Source) {
     let magnitude = value.magnitude
     let width = Self.significantBitCount(magnitude)
     guard width - magnitude.trailingZeroBitCount <= 106 || width == 0 else {

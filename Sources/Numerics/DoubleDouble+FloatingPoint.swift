@@ -9,16 +9,16 @@ import PlatformSupport
 extension DoubleDouble {
   // MARK: Sign, exponent, significand
 
-  @inlinable public var sign: FloatingPointSign { hi.sign }
+  @inlinable package var sign: FloatingPointSign { hi.sign }
 
-  @inlinable public var magnitude: DoubleDouble {
+  @inlinable package var magnitude: DoubleDouble {
     hi.sign == .minus ? -self : self
   }
 
   /// The exponent of the leading bit (Int.min for zero, Int.max for
   /// infinities and NaN, as Double).
   @inlinable
-  public var exponent: Int {
+  package var exponent: Int {
     guard hi.isNormal else { return hi.exponent }
     if hi.significandBitPattern == 0 && lo != 0 && (lo < 0) != (hi < 0) {
       return hi.exponent - 1
@@ -28,7 +28,7 @@ extension DoubleDouble {
 
   /// In [1, 2) for finite non-zero values; as Double's for the others.
   @inlinable
-  public var significand: DoubleDouble {
+  package var significand: DoubleDouble {
     guard hi.isFinite, hi != 0 else {
       return DoubleDouble(uncheckedHi: hi.significand, lo: 0)
     }
@@ -43,7 +43,7 @@ extension DoubleDouble {
 
   /// ±significand·2^exponent, rounded to the format.
   @inlinable
-  public init(
+  package init(
     sign: FloatingPointSign, exponent: Int, significand: DoubleDouble
   ) {
     let hi = Double(sign: sign, exponent: exponent, significand: significand.hi)
@@ -56,7 +56,7 @@ extension DoubleDouble {
   }
 
   @inlinable
-  public init(signOf sign: DoubleDouble, magnitudeOf magnitude: DoubleDouble) {
+  package init(signOf sign: DoubleDouble, magnitudeOf magnitude: DoubleDouble) {
     self = sign.sign == magnitude.sign ? magnitude : -magnitude
   }
 
@@ -74,7 +74,7 @@ extension DoubleDouble {
   }
 
   @inlinable
-  public var exponentBitPattern: UInt {
+  package var exponentBitPattern: UInt {
     if !hi.isFinite { return 2047 }
     if !hi.isNormal { return 0 }
     return UInt(exponent + 1023)
@@ -83,7 +83,7 @@ extension DoubleDouble {
   /// The 105 fraction bits below the leading one (all bits for subnormals,
   /// whose unit is 2⁻¹¹²⁷); for NaN, Double's payload shifted to the top.
   @inlinable
-  public var significandBitPattern: DoubleDoubleSignificand {
+  package var significandBitPattern: DoubleDoubleSignificand {
     if hi.isNaN {
       return DoubleDoubleSignificand(high: 0, low: hi.significandBitPattern)
         .shiftedLeft(53)
@@ -106,7 +106,7 @@ extension DoubleDouble {
   /// format holds more than a pair can (see the type's comment); a NaN
   /// keeps the payload's top 52 bits.
   @inlinable
-  public init(
+  package init(
     sign: FloatingPointSign, exponentBitPattern: UInt,
     significandBitPattern: DoubleDoubleSignificand
   ) {
@@ -160,7 +160,7 @@ extension DoubleDouble {
 
   /// 2^exponent with the value's sign; Double's for zeros and non-finite.
   @inlinable
-  public var binade: DoubleDouble {
+  package var binade: DoubleDouble {
     guard hi.isFinite, hi != 0 else {
       return DoubleDouble(uncheckedHi: hi.binade, lo: 0)
     }
@@ -172,7 +172,7 @@ extension DoubleDouble {
   /// Bits after the leading one up to the last set bit; −1 for zeros and
   /// non-finite values, as Double.
   @inlinable
-  public var significandWidth: Int {
+  package var significandWidth: Int {
     guard hi.isFinite, hi != 0 else { return -1 }
     let last = lo != 0 ? lo : hi
     return exponent - (Int(last.exponent) - last.significandWidth)
@@ -183,7 +183,7 @@ extension DoubleDouble {
   /// The spacing of values at `self`: 2^(exponent − 105), never below
   /// 2⁻¹⁰⁷⁴ (see the type's comment); NaN for non-finite values.
   @inlinable
-  public var ulp: DoubleDouble {
+  package var ulp: DoubleDouble {
     guard hi.isFinite else { return .nan }
     guard hi != 0 else { return .leastNonzeroMagnitude }
     return DoubleDouble(
@@ -205,7 +205,7 @@ extension DoubleDouble {
   }
 
   @inlinable
-  public var nextUp: DoubleDouble {
+  package var nextUp: DoubleDouble {
     if hi.isNaN { return DoubleDouble(uncheckedHi: hi + 0, lo: 0) }
     if hi == -.infinity { return -.greatestFiniteMagnitude }
     if hi == .infinity { return self }
@@ -219,48 +219,48 @@ extension DoubleDouble {
 
   // MARK: Classification
 
-  @inlinable public var isNormal: Bool { hi.isNormal }
-  @inlinable public var isFinite: Bool { hi.isFinite }
-  @inlinable public var isZero: Bool { hi == 0 }
-  @inlinable public var isSubnormal: Bool { hi.isSubnormal }
-  @inlinable public var isInfinite: Bool { hi.isInfinite }
-  @inlinable public var isNaN: Bool { hi.isNaN }
-  @inlinable public var isSignalingNaN: Bool { hi.isSignalingNaN }
-  @inlinable public var isCanonical: Bool { true }
+  @inlinable package var isNormal: Bool { hi.isNormal }
+  @inlinable package var isFinite: Bool { hi.isFinite }
+  @inlinable package var isZero: Bool { hi == 0 }
+  @inlinable package var isSubnormal: Bool { hi.isSubnormal }
+  @inlinable package var isInfinite: Bool { hi.isInfinite }
+  @inlinable package var isNaN: Bool { hi.isNaN }
+  @inlinable package var isSignalingNaN: Bool { hi.isSignalingNaN }
+  @inlinable package var isCanonical: Bool { true }
 
-  @inlinable public func isEqual(to other: DoubleDouble) -> Bool {
+  @inlinable package func isEqual(to other: DoubleDouble) -> Bool {
     self == other
   }
-  @inlinable public func isLess(than other: DoubleDouble) -> Bool {
+  @inlinable package func isLess(than other: DoubleDouble) -> Bool {
     self < other
   }
-  @inlinable public func isLessThanOrEqualTo(_ other: DoubleDouble) -> Bool {
+  @inlinable package func isLessThanOrEqualTo(_ other: DoubleDouble) -> Bool {
     self < other || self == other
   }
 
   // MARK: Arithmetic requirements
 
-  @inlinable public mutating func negate() { self = -self }
+  @inlinable package mutating func negate() { self = -self }
 
-  @inlinable public static func += (x: inout DoubleDouble, y: DoubleDouble) {
+  @inlinable package static func += (x: inout DoubleDouble, y: DoubleDouble) {
     x = x + y
   }
-  @inlinable public static func -= (x: inout DoubleDouble, y: DoubleDouble) {
+  @inlinable package static func -= (x: inout DoubleDouble, y: DoubleDouble) {
     x = x - y
   }
-  @inlinable public static func *= (x: inout DoubleDouble, y: DoubleDouble) {
+  @inlinable package static func *= (x: inout DoubleDouble, y: DoubleDouble) {
     x = x * y
   }
-  @inlinable public static func /= (x: inout DoubleDouble, y: DoubleDouble) {
+  @inlinable package static func /= (x: inout DoubleDouble, y: DoubleDouble) {
     x = x / y
   }
 
-  @inlinable public mutating func formSquareRoot() { self = squareRoot() }
+  @inlinable package mutating func formSquareRoot() { self = squareRoot() }
 
   /// self + lhs·rhs, not fused: the product is rounded (≤ 5u²), then the
   /// sum (≤ 4u² + 13u³).
   @inlinable
-  public mutating func addProduct(_ lhs: DoubleDouble, _ rhs: DoubleDouble) {
+  package mutating func addProduct(_ lhs: DoubleDouble, _ rhs: DoubleDouble) {
     self = self + lhs * rhs
   }
 
@@ -288,7 +288,9 @@ extension DoubleDouble {
 
   /// self − q·other with q = self/other truncated (fmod).
   @inlinable
-  public mutating func formTruncatingRemainder(dividingBy other: DoubleDouble) {
+  package mutating func formTruncatingRemainder(
+    dividingBy other: DoubleDouble
+  ) {
     guard isFinite, !other.isNaN, other != 0 else {
       self = .nan
       return
@@ -301,7 +303,7 @@ extension DoubleDouble {
   /// IEEE remainder: self − q·other with q = self/other rounded to nearest
   /// even, so |result| ≤ |other|/2.
   @inlinable
-  public mutating func formRemainder(dividingBy other: DoubleDouble) {
+  package mutating func formRemainder(dividingBy other: DoubleDouble) {
     guard isFinite, !other.isNaN, other != 0 else {
       self = .nan
       return
@@ -319,7 +321,7 @@ extension DoubleDouble {
 
   /// Rounded to an integer by `rule`, exactly.
   @inlinable
-  public mutating func round(_ rule: FloatingPointRoundingRule) {
+  package mutating func round(_ rule: FloatingPointRoundingRule) {
     guard hi.isFinite, hi != 0 else { return }
     // self = floor + fraction, fraction in [0, 1) classified against ½;
     // when hi is not an integer, |lo| < hi's distance to any integer.

@@ -58,14 +58,16 @@ extension DoubleDouble: Real {
   // MARK: Double-double accurate
 
   /// `x.squareRoot()`: ≤ 2u² + O(u³) relative error.
-  public static func sqrt(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func sqrt(_ x: DoubleDouble) -> DoubleDouble {
     x.squareRoot()
   }
 
   /// √(x² + y²) in double-double, scaled by a power of two so that the
   /// squares neither overflow nor underflow: ≤ about 8u² relative error.
   /// +∞ if either is infinite, even with a NaN.
-  public static func hypot(_ x: DoubleDouble, _ y: DoubleDouble)
+  @usableFromInline
+  package static func hypot(_ x: DoubleDouble, _ y: DoubleDouble)
     -> DoubleDouble
   {
     if x.isInfinite || y.isInfinite { return .infinity }
@@ -81,7 +83,8 @@ extension DoubleDouble: Real {
 
   /// xⁿ by repeated squaring, each product ≤ 5u²: relative error ≤
   /// 5u²·(2·log₂|n| + 1) roughly, plus one division for negative n. x⁰ = 1.
-  public static func pow(_ x: DoubleDouble, _ n: Int) -> DoubleDouble {
+  @usableFromInline
+  package static func pow(_ x: DoubleDouble, _ n: Int) -> DoubleDouble {
     if n == 0 { return 1 }
     var base = x
     var remaining = n.magnitude
@@ -97,7 +100,8 @@ extension DoubleDouble: Real {
   /// The real n-th root (odd n: negative x allowed; even n: NaN below
   /// zero): Double's root of `hi`, then one Newton step in double-double,
   /// quadratic from 2⁻⁵³, so a few units of 2⁻¹⁰⁶ for small n.
-  public static func root(_ x: DoubleDouble, _ n: Int) -> DoubleDouble {
+  @usableFromInline
+  package static func root(_ x: DoubleDouble, _ n: Int) -> DoubleDouble {
     guard n != 0 else { return .nan }
     if n == 1 { return x }
     if n == 2 { return x.squareRoot() }
@@ -117,7 +121,8 @@ extension DoubleDouble: Real {
 
   /// 1/x, when it is normal (or x is zero or infinite), as swift-numerics
   /// defines it; ≤ 2u² + O(u³).
-  public var reciprocal: DoubleDouble? {
+  @usableFromInline
+  package var reciprocal: DoubleDouble? {
     let inverse = 1 / self
     if inverse.isNormal || isZero || !isFinite { return inverse }
     return nil
@@ -126,40 +131,49 @@ extension DoubleDouble: Real {
   // MARK: Through Double (accuracy of Double only)
 
   /// Through Double.
-  public static func exp(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func exp(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cExp)
   }
   /// Through Double.
-  public static func expMinusOne(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func expMinusOne(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cExpMinusOne)
   }
   /// Through Double.
-  public static func exp2(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func exp2(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cExp2)
   }
   /// Through Double (10^x by the C library's pow).
-  public static func exp10(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func exp10(_ x: DoubleDouble) -> DoubleDouble {
     DoubleDouble(cPow(10, x.hi))
   }
   /// Through Double.
-  public static func log(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func log(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cLog)
   }
   /// Through Double.
-  public static func log(onePlus x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func log(onePlus x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cLogOnePlus)
   }
   /// Through Double.
-  public static func log2(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func log2(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cLog2)
   }
   /// Through Double.
-  public static func log10(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func log10(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cLog10)
   }
   /// sin x in double-double for |x| < 2³⁰ (see `reducedQuarterTurn`),
   /// within a few units of u² absolute; through Double beyond.
-  public static func sin(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func sin(_ x: DoubleDouble) -> DoubleDouble {
     guard let (r, quadrant) = reducedQuarterTurn(x) else {
       return viaDouble(x, cSin)
     }
@@ -172,7 +186,8 @@ extension DoubleDouble: Real {
   }
   /// cos x in double-double for |x| < 2³⁰, within a few units of u²
   /// absolute; through Double beyond.
-  public static func cos(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func cos(_ x: DoubleDouble) -> DoubleDouble {
     guard let (r, quadrant) = reducedQuarterTurn(x) else {
       return viaDouble(x, cCos)
     }
@@ -184,7 +199,8 @@ extension DoubleDouble: Real {
     }
   }
   /// sin x / cos x, in double-double for |x| < 2³⁰.
-  public static func tan(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func tan(_ x: DoubleDouble) -> DoubleDouble {
     guard reducedQuarterTurn(x) != nil else { return viaDouble(x, cTan) }
     return sin(x) / cos(x)
   }
@@ -238,69 +254,87 @@ extension DoubleDouble: Real {
     return sum
   }
   /// Through Double.
-  public static func asin(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func asin(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cAsin)
   }
   /// Through Double.
-  public static func acos(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func acos(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cAcos)
   }
   /// Through Double.
-  public static func atan(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func atan(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cAtan)
   }
   /// Through Double.
-  public static func atan2(y: DoubleDouble, x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func atan2(y: DoubleDouble, x: DoubleDouble) -> DoubleDouble {
     DoubleDouble(cAtan2(y.hi, x.hi))
   }
   /// Through Double.
-  public static func sinh(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func sinh(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cSinh)
   }
   /// Through Double.
-  public static func cosh(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func cosh(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cCosh)
   }
   /// Through Double.
-  public static func tanh(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func tanh(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cTanh)
   }
   /// Through Double.
-  public static func asinh(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func asinh(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cAsinh)
   }
   /// Through Double.
-  public static func acosh(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func acosh(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cAcosh)
   }
   /// Through Double.
-  public static func atanh(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func atanh(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cAtanh)
   }
   /// Through Double: x^y for real y; NaN for negative x.
-  public static func pow(_ x: DoubleDouble, _ y: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func pow(_ x: DoubleDouble, _ y: DoubleDouble)
+    -> DoubleDouble
+  {
     if x < 0 { return .nan }
     return DoubleDouble(cPow(x.hi, y.hi))
   }
   /// Through Double.
-  public static func erf(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func erf(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cErf)
   }
   /// Through Double.
-  public static func erfc(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func erfc(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cErfc)
   }
   /// Through Double.
-  public static func gamma(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func gamma(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cGamma)
   }
   /// Through Double: log |Γ(x)|.
-  public static func logGamma(_ x: DoubleDouble) -> DoubleDouble {
+  @usableFromInline
+  package static func logGamma(_ x: DoubleDouble) -> DoubleDouble {
     viaDouble(x, cLogGamma)
   }
   /// The sign of Γ(x), exactly: + for x ≥ 0 and at the poles, otherwise
   /// alternating between the negative integers.
-  public static func signGamma(_ x: DoubleDouble) -> FloatingPointSign {
+  @usableFromInline
+  package static func signGamma(_ x: DoubleDouble) -> FloatingPointSign {
     if x >= 0 { return .plus }
     let whole = x.rounded(.towardZero)
     if x == whole { return .plus }

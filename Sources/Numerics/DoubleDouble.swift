@@ -57,12 +57,15 @@ import PlatformSupport
 /// type is the reference elsewhere (Apple Silicon) and is tested against
 /// Float80 on x86 (Tests/RayTracerTests/Math/DoubleDoubleTests.swift).
 @frozen
-public struct DoubleDouble: Sendable {
+@usableFromInline
+package struct DoubleDouble: Sendable {
   /// The leading part, `hi + lo` rounded to Double. It carries the value's
   /// sign, also for zeros; infinities and NaNs are held in `hi` alone.
-  public let hi: Double
+  @usableFromInline
+  package let hi: Double
   /// The trailing part: |lo| ≤ ulp(hi)/2, zero when `hi` is not finite.
-  public let lo: Double
+  @usableFromInline
+  package let lo: Double
 
   /// A pair already normalised and in the 106-bit format.
   @inlinable
@@ -74,14 +77,14 @@ public struct DoubleDouble: Sendable {
   /// `hi + lo` rounded to the 106-bit format (exact when it fits: any two
   /// Doubles whose sum spans at most 106 bits).
   @inlinable
-  public init(_ hi: Double, _ lo: Double) {
+  package init(_ hi: Double, _ lo: Double) {
     let (sum, error) = Compensated.twoSum(hi, lo)
     self = Self.normalized(sum, error)
   }
 
   /// A Double, exactly.
   @inlinable
-  public init(_ value: Double) {
+  package init(_ value: Double) {
     self.init(uncheckedHi: value, lo: 0)
   }
 }
@@ -161,7 +164,7 @@ extension DoubleDouble {
 extension DoubleDouble {
   /// x + y, ≤ 4u² + 13u³ relative error (see the type's comment).
   @inlinable
-  public static func + (x: DoubleDouble, y: DoubleDouble) -> DoubleDouble {
+  package static func + (x: DoubleDouble, y: DoubleDouble) -> DoubleDouble {
     let (sh, sl) = Compensated.twoSum(x.hi, y.hi)
     guard sh.isFinite else { return DoubleDouble(uncheckedHi: sh, lo: 0) }
     let (th, tl) = Compensated.twoSum(x.lo, y.lo)
@@ -176,18 +179,18 @@ extension DoubleDouble {
   }
 
   @inlinable
-  public static prefix func - (x: DoubleDouble) -> DoubleDouble {
+  package static prefix func - (x: DoubleDouble) -> DoubleDouble {
     DoubleDouble(uncheckedHi: -x.hi, lo: -x.lo)
   }
 
   @inlinable
-  public static func - (x: DoubleDouble, y: DoubleDouble) -> DoubleDouble {
+  package static func - (x: DoubleDouble, y: DoubleDouble) -> DoubleDouble {
     x + -y
   }
 
   /// x·y, ≤ 5u² relative error (see the type's comment).
   @inlinable
-  public static func * (x: DoubleDouble, y: DoubleDouble) -> DoubleDouble {
+  package static func * (x: DoubleDouble, y: DoubleDouble) -> DoubleDouble {
     let (ch, cl1) = Compensated.twoProduct(x.hi, y.hi)
     guard ch.isFinite, ch != 0 else {
       return DoubleDouble(uncheckedHi: ch, lo: 0)
@@ -201,7 +204,7 @@ extension DoubleDouble {
   /// x/y by three Newton steps q ← q + (x − q·y)/y, each residual computed
   /// from exact products: ≤ 2u² + O(u³) relative error.
   @inlinable
-  public static func / (x: DoubleDouble, y: DoubleDouble) -> DoubleDouble {
+  package static func / (x: DoubleDouble, y: DoubleDouble) -> DoubleDouble {
     let q0 = x.hi / y.hi
     guard q0.isFinite, q0 != 0, y.hi.isFinite else {
       return DoubleDouble(uncheckedHi: q0, lo: 0)
@@ -223,7 +226,7 @@ extension DoubleDouble {
   /// rounded root, residuals from exact products: ≤ 2u² + O(u³) relative
   /// error; −0 for −0, NaN below zero.
   @inlinable
-  public func squareRoot() -> DoubleDouble {
+  package func squareRoot() -> DoubleDouble {
     guard hi > 0, hi.isFinite else {
       return DoubleDouble(uncheckedHi: hi.squareRoot(), lo: 0)
     }
@@ -246,12 +249,12 @@ extension DoubleDouble: Equatable, Hashable {
   /// IEEE equality: NaN is unequal to everything, −0 == +0. Exact, since
   /// every value has one normalised pair.
   @inlinable
-  public static func == (x: DoubleDouble, y: DoubleDouble) -> Bool {
+  package static func == (x: DoubleDouble, y: DoubleDouble) -> Bool {
     x.hi == y.hi && x.lo == y.lo
   }
 
   @inlinable
-  public func hash(into hasher: inout Hasher) {
+  package func hash(into hasher: inout Hasher) {
     // Double hashes −0 as +0, as == requires.
     hasher.combine(hi)
     hasher.combine(lo)
@@ -261,14 +264,15 @@ extension DoubleDouble: Equatable, Hashable {
 extension DoubleDouble: Comparable {
   /// Exact: hi decides unless equal, then lo.
   @inlinable
-  public static func < (x: DoubleDouble, y: DoubleDouble) -> Bool {
+  package static func < (x: DoubleDouble, y: DoubleDouble) -> Bool {
     x.hi < y.hi || (x.hi == y.hi && x.lo < y.lo)
   }
 }
 
 extension DoubleDouble: CustomStringConvertible {
   /// "hi + lo" (or "hi − |lo|"), each part printed as Double prints it.
-  public var description: String {
+  @usableFromInline
+  package var description: String {
     guard lo != 0 else { return hi.description }
     return lo < 0
       ? "\(hi) - \((-lo).description)" : "\(hi) + \(lo.description)"

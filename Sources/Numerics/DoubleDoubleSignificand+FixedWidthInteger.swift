@@ -3,63 +3,67 @@ import SceneDescription
 import PlatformSupport
 
 extension DoubleDoubleSignificand: FixedWidthInteger, UnsignedInteger {
-  public typealias IntegerLiteralType = UInt64
-  public typealias Magnitude = DoubleDoubleSignificand
+  @usableFromInline
+  package typealias IntegerLiteralType = UInt64
+  @usableFromInline
+  package typealias Magnitude = DoubleDoubleSignificand
 
   @inlinable
-  public init(integerLiteral value: UInt64) {
+  package init(integerLiteral value: UInt64) {
     self.init(high: 0, low: value)
   }
 
   @inlinable
-  public init(_truncatingBits bits: UInt) {
+  package init(_truncatingBits bits: UInt) {
     self.init(high: 0, low: UInt64(bits))
   }
 
-  @inlinable public static var bitWidth: Int { 128 }
-  @inlinable public static var max: Self { Self(high: .max, low: .max) }
-  @inlinable public static var min: Self { Self(high: 0, low: 0) }
-  @inlinable public var magnitude: Self { self }
+  @inlinable package static var bitWidth: Int { 128 }
+  @inlinable package static var max: Self { Self(high: .max, low: .max) }
+  @inlinable package static var min: Self { Self(high: 0, low: 0) }
+  @inlinable package var magnitude: Self { self }
 
   /// The words, least significant first, without allocating: the standard
   /// library's conversions to other integers read them.
   @frozen
-  public struct Words: RandomAccessCollection, Sendable {
-    public let value: DoubleDoubleSignificand
+  @usableFromInline
+  package struct Words: RandomAccessCollection, Sendable {
+    @usableFromInline
+    package let value: DoubleDoubleSignificand
 
     @inlinable
-    public init(value: DoubleDoubleSignificand) { self.value = value }
+    package init(value: DoubleDoubleSignificand) { self.value = value }
 
-    @inlinable public var startIndex: Int { 0 }
-    @inlinable public var endIndex: Int { 128 / UInt.bitWidth }
+    @inlinable package var startIndex: Int { 0 }
+    @inlinable package var endIndex: Int { 128 / UInt.bitWidth }
 
     @inlinable
-    public subscript(position: Int) -> UInt {
+    package subscript(position: Int) -> UInt {
       precondition(position >= 0 && position < endIndex, "index out of range")
       let shifted = value.shiftedRight(position * UInt.bitWidth)
       return UInt(truncatingIfNeeded: shifted.low)
     }
   }
 
-  @inlinable public var words: Words { Words(value: self) }
+  @inlinable package var words: Words { Words(value: self) }
 
-  @inlinable public var nonzeroBitCount: Int {
+  @inlinable package var nonzeroBitCount: Int {
     high.nonzeroBitCount + low.nonzeroBitCount
   }
-  @inlinable public var leadingZeroBitCount: Int {
+  @inlinable package var leadingZeroBitCount: Int {
     high == 0 ? 64 + low.leadingZeroBitCount : high.leadingZeroBitCount
   }
-  @inlinable public var trailingZeroBitCount: Int {
+  @inlinable package var trailingZeroBitCount: Int {
     low == 0 ? 64 + high.trailingZeroBitCount : low.trailingZeroBitCount
   }
-  @inlinable public var byteSwapped: Self {
+  @inlinable package var byteSwapped: Self {
     Self(high: low.byteSwapped, low: high.byteSwapped)
   }
 
   // MARK: Arithmetic reporting overflow
 
   @inlinable
-  public func addingReportingOverflow(
+  package func addingReportingOverflow(
     _ other: Self
   ) -> (partialValue: Self, overflow: Bool) {
     let (l, carry) = low.addingReportingOverflow(other.low)
@@ -69,7 +73,7 @@ extension DoubleDoubleSignificand: FixedWidthInteger, UnsignedInteger {
   }
 
   @inlinable
-  public func subtractingReportingOverflow(
+  package func subtractingReportingOverflow(
     _ other: Self
   ) -> (partialValue: Self, overflow: Bool) {
     let (l, borrow) = low.subtractingReportingOverflow(other.low)
@@ -79,7 +83,7 @@ extension DoubleDoubleSignificand: FixedWidthInteger, UnsignedInteger {
   }
 
   @inlinable
-  public func multipliedReportingOverflow(
+  package func multipliedReportingOverflow(
     by other: Self
   ) -> (partialValue: Self, overflow: Bool) {
     let full = multipliedFullWidth(by: other)
@@ -88,7 +92,7 @@ extension DoubleDoubleSignificand: FixedWidthInteger, UnsignedInteger {
 
   /// Schoolbook multiplication on 64-bit limbs.
   @inlinable
-  public func multipliedFullWidth(by other: Self) -> (high: Self, low: Self) {
+  package func multipliedFullWidth(by other: Self) -> (high: Self, low: Self) {
     let a = (low, high)
     let b = (other.low, other.high)
     // r0 + r1·2⁶⁴ + r2·2¹²⁸ + r3·2¹⁹²
@@ -122,7 +126,7 @@ extension DoubleDoubleSignificand: FixedWidthInteger, UnsignedInteger {
   /// Bit-serial restoring division; the quotient must fit (dividend.high
   /// below `self`).
   @inlinable
-  public func dividingFullWidth(
+  package func dividingFullWidth(
     _ dividend: (high: Self, low: Self)
   ) -> (quotient: Self, remainder: Self) {
     precondition(self != 0, "division by zero")
@@ -160,7 +164,7 @@ extension DoubleDoubleSignificand: FixedWidthInteger, UnsignedInteger {
   }
 
   @inlinable
-  public func dividedReportingOverflow(
+  package func dividedReportingOverflow(
     by other: Self
   ) -> (partialValue: Self, overflow: Bool) {
     if other == 0 { return (self, true) }
@@ -168,7 +172,7 @@ extension DoubleDoubleSignificand: FixedWidthInteger, UnsignedInteger {
   }
 
   @inlinable
-  public func remainderReportingOverflow(
+  package func remainderReportingOverflow(
     dividingBy other: Self
   ) -> (partialValue: Self, overflow: Bool) {
     if other == 0 { return (self, true) }
@@ -178,90 +182,90 @@ extension DoubleDoubleSignificand: FixedWidthInteger, UnsignedInteger {
   // MARK: Operators
 
   @inlinable
-  public static func + (lhs: Self, rhs: Self) -> Self {
+  package static func + (lhs: Self, rhs: Self) -> Self {
     let result = lhs.addingReportingOverflow(rhs)
     precondition(!result.overflow, "arithmetic overflow")
     return result.partialValue
   }
 
   @inlinable
-  public static func - (lhs: Self, rhs: Self) -> Self {
+  package static func - (lhs: Self, rhs: Self) -> Self {
     let result = lhs.subtractingReportingOverflow(rhs)
     precondition(!result.overflow, "arithmetic overflow")
     return result.partialValue
   }
 
   @inlinable
-  public static func * (lhs: Self, rhs: Self) -> Self {
+  package static func * (lhs: Self, rhs: Self) -> Self {
     let result = lhs.multipliedReportingOverflow(by: rhs)
     precondition(!result.overflow, "arithmetic overflow")
     return result.partialValue
   }
 
   @inlinable
-  public static func / (lhs: Self, rhs: Self) -> Self {
+  package static func / (lhs: Self, rhs: Self) -> Self {
     precondition(rhs != 0, "division by zero")
     return lhs.dividedReportingOverflow(by: rhs).partialValue
   }
 
   @inlinable
-  public static func % (lhs: Self, rhs: Self) -> Self {
+  package static func % (lhs: Self, rhs: Self) -> Self {
     precondition(rhs != 0, "division by zero")
     return lhs.remainderReportingOverflow(dividingBy: rhs).partialValue
   }
 
-  @inlinable public static func += (lhs: inout Self, rhs: Self) {
+  @inlinable package static func += (lhs: inout Self, rhs: Self) {
     lhs = lhs + rhs
   }
-  @inlinable public static func -= (lhs: inout Self, rhs: Self) {
+  @inlinable package static func -= (lhs: inout Self, rhs: Self) {
     lhs = lhs - rhs
   }
-  @inlinable public static func *= (lhs: inout Self, rhs: Self) {
+  @inlinable package static func *= (lhs: inout Self, rhs: Self) {
     lhs = lhs * rhs
   }
-  @inlinable public static func /= (lhs: inout Self, rhs: Self) {
+  @inlinable package static func /= (lhs: inout Self, rhs: Self) {
     lhs = lhs / rhs
   }
-  @inlinable public static func %= (lhs: inout Self, rhs: Self) {
+  @inlinable package static func %= (lhs: inout Self, rhs: Self) {
     lhs = lhs % rhs
   }
 
-  @inlinable public static func &= (lhs: inout Self, rhs: Self) {
+  @inlinable package static func &= (lhs: inout Self, rhs: Self) {
     lhs = Self(high: lhs.high & rhs.high, low: lhs.low & rhs.low)
   }
-  @inlinable public static func |= (lhs: inout Self, rhs: Self) {
+  @inlinable package static func |= (lhs: inout Self, rhs: Self) {
     lhs = Self(high: lhs.high | rhs.high, low: lhs.low | rhs.low)
   }
-  @inlinable public static func ^= (lhs: inout Self, rhs: Self) {
+  @inlinable package static func ^= (lhs: inout Self, rhs: Self) {
     lhs = Self(high: lhs.high ^ rhs.high, low: lhs.low ^ rhs.low)
   }
-  @inlinable public static prefix func ~ (x: Self) -> Self {
+  @inlinable package static prefix func ~ (x: Self) -> Self {
     Self(high: ~x.high, low: ~x.low)
   }
 
   /// Masking shifts: the count is taken modulo 128.
-  @inlinable public static func &>> (lhs: Self, rhs: Self) -> Self {
+  @inlinable package static func &>> (lhs: Self, rhs: Self) -> Self {
     lhs.shiftedRight(Int(rhs.low & 127))
   }
-  @inlinable public static func &<< (lhs: Self, rhs: Self) -> Self {
+  @inlinable package static func &<< (lhs: Self, rhs: Self) -> Self {
     lhs.shiftedLeft(Int(rhs.low & 127))
   }
 
   // Stated, or Strideable's default (by distance, which traps beyond Int)
   // would be chosen over the synthesised one.
   @inlinable
-  public static func == (lhs: Self, rhs: Self) -> Bool {
+  package static func == (lhs: Self, rhs: Self) -> Bool {
     lhs.high == rhs.high && lhs.low == rhs.low
   }
 
   @inlinable
-  public func hash(into hasher: inout Hasher) {
+  package func hash(into hasher: inout Hasher) {
     hasher.combine(high)
     hasher.combine(low)
   }
 
   @inlinable
-  public static func < (lhs: Self, rhs: Self) -> Bool {
+  package static func < (lhs: Self, rhs: Self) -> Bool {
     lhs.high != rhs.high ? lhs.high < rhs.high : lhs.low < rhs.low
   }
 }

@@ -11,14 +11,17 @@ import PlatformSupport
 /// complete `FixedWidthInteger` (trapping `+ − × ÷` on overflow, wrapping
 /// `&+` etc.), written for correctness, not speed: division is bit-serial.
 @frozen
-public struct DoubleDoubleSignificand: Sendable, Hashable {
+@usableFromInline
+package struct DoubleDoubleSignificand: Sendable, Hashable {
   /// The upper 64 bits.
-  public var high: UInt64
+  @usableFromInline
+  package var high: UInt64
   /// The lower 64 bits.
-  public var low: UInt64
+  @usableFromInline
+  package var low: UInt64
 
   @inlinable
-  public init(high: UInt64, low: UInt64) {
+  package init(high: UInt64, low: UInt64) {
     self.high = high
     self.low = low
   }

@@ -30,17 +30,22 @@ import PlatformSupport
 /// (`EllipsoidAxesTests`). A matrix whose own rounding leaves it
 /// ill-conditioned without a scaling is held to 2⁻¹⁰⁴·σ_max, below
 /// Double's rounding of its entries while σ_max/σ_min < 2⁵⁰.
-public struct EllipsoidAxes: Sendable {
+@usableFromInline
+package struct EllipsoidAxes: Sendable {
   /// u₀, u₁, u₂: orthonormal to a few units of 2⁻¹⁰⁴.
-  public var directions: [Vector3<DoubleDouble>]
+  @usableFromInline
+  package var directions: [Vector3<DoubleDouble>]
   /// A₀, A₁, A₂ > 0: the semi-axes, in the world's units.
-  public var lengths: [DoubleDouble]
+  @usableFromInline
+  package var lengths: [DoubleDouble]
   /// C = M·c, the centre in the world.
-  public var center: Vector3<DoubleDouble>
+  @usableFromInline
+  package var center: Vector3<DoubleDouble>
 
   /// The axes of `sphere` placed by `matrix` (affine); nil when a
   /// semi-axis is zero or not finite.
-  public init?(matrix m: Matrix4<Double>, sphere: Sphere<Double>) {
+  @usableFromInline
+  package init?(matrix m: Matrix4<Double>, sphere: Sphere<Double>) {
     typealias DD = DoubleDouble
     let rows = [
       Vector3(DD(m.m00), DD(m.m01), DD(m.m02)),

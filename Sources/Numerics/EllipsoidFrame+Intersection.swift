@@ -48,7 +48,7 @@ import PlatformSupport
 extension EllipsoidFrame {
   /// D, the ray's direction in the unit sphere's frame, times 2⁻ᵏ.
   @inlinable @inline(__always)
-  public func localDirection(_ d: Vector3<S>) -> Vector3<S> {
+  package func localDirection(_ d: Vector3<S>) -> Vector3<S> {
     Vector3(
       scales.x * axis0.dot(d), scales.y * axis1.dot(d),
       scales.z * axis2.dot(d))
@@ -62,7 +62,7 @@ extension EllipsoidFrame {
   /// negative, and the ray is rejected first, as `StableKernel` rejects
   /// such spheres.
   @inlinable @inline(__always)
-  public func root(
+  package func root(
     direction d: Vector3<S>, after tMin: S = 0, before tMax: S
   ) -> S? {
     let direction = localDirection(d)
@@ -104,7 +104,7 @@ extension EllipsoidFrame {
   /// (`SphereIntersection.stableNormal`); farther, where it would cancel,
   /// −l ∓ √(a − |p × D|²)·D/a with l = (D × (p × D))/a.
   @inlinable
-  public func normal(direction d: Vector3<S>, t: S) -> Vector3<S> {
+  package func normal(direction d: Vector3<S>, t: S) -> Vector3<S> {
     let direction = localDirection(d)
     let offsetFromCenter: Vector3<S>
     if c < 4095 {

@@ -22,30 +22,40 @@ import PlatformSupport
 /// the axes for p as well would turn the whole ellipsoid by ε about its
 /// centre, moving the surface by ε·|C − E| where the eye may be far closer
 /// to it than to its centre (a disc seen from just above its edge).
-public struct EllipsoidFrame<S: RayScalar>: Sendable {
+@usableFromInline
+package struct EllipsoidFrame<S: RayScalar>: Sendable {
   /// u₀, u₁, u₂, the world's unit axes, rounded to S.
-  public var axis0: Vector3<S>
-  public var axis1: Vector3<S>
-  public var axis2: Vector3<S>
+  @usableFromInline
+  package var axis0: Vector3<S>
+  @usableFromInline
+  package var axis1: Vector3<S>
+  @usableFromInline
+  package var axis2: Vector3<S>
   /// 2⁻ᵏ/Aⱼ: the local direction is (scalesⱼ·(uⱼ·d))ⱼ. The largest is
   /// in [1, 2).
-  public var scales: Vector3<S>
+  @usableFromInline
+  package var scales: Vector3<S>
   /// p = (uⱼ·(C − E)/Aⱼ)ⱼ, the centre relative to the eye in the unit
   /// sphere's frame, each component rounded once from DoubleDouble.
-  public var offset: Vector3<S>
+  @usableFromInline
+  package var offset: Vector3<S>
   /// |p|² − 1 from p in DoubleDouble (before its rounding), rounded once:
   /// positive when the eye is outside.
-  public var c: S
+  @usableFromInline
+  package var c: S
   /// 2⁻ᵏ and 2ᵏ: t = t̂·2⁻ᵏ between the test's t̂ and the world's t.
-  public var tScale: S
-  public var inverseTScale: S
+  @usableFromInline
+  package var tScale: S
+  @usableFromInline
+  package var inverseTScale: S
 
   /// The frame of `ellipsoid` seen from `eye`; one that never reports a
   /// hit (`never`) when its axes or its constants do not fit S's range
   /// with the margin the test's products need (|p|² below S's largest
   /// finite value over 64): an ellipsoid too thin beside its distance from
   /// the eye, which `LengthScale` keeps from the render.
-  public init(_ ellipsoid: TransformedSphere<Double>, eye: Vector3<Double>) {
+  @usableFromInline
+  package init(_ ellipsoid: TransformedSphere<Double>, eye: Vector3<Double>) {
     guard
       let axes = EllipsoidAxes(
         matrix: ellipsoid.matrix, sphere: ellipsoid.sphere),
@@ -59,7 +69,8 @@ public struct EllipsoidFrame<S: RayScalar>: Sendable {
 
   /// The frame of the ellipsoid with axes `axes` seen from `eye`, or nil
   /// when it does not fit S (see `init(_:eye:)`).
-  public init?(_ axes: EllipsoidAxes, eye: Vector3<Double>) {
+  @usableFromInline
+  package init?(_ axes: EllipsoidAxes, eye: Vector3<Double>) {
     typealias DD = DoubleDouble
     func rounded(_ x: DD) -> S { CameraRelative.narrowed(x.hi, x.lo) }
     let shortest = axes.lengths.min() ?? 0
@@ -104,7 +115,8 @@ public struct EllipsoidFrame<S: RayScalar>: Sendable {
   /// A frame no ray hits: its centre at the eye with c = 1 > 0 claims
   /// the eye outside a sphere it is at the centre of, so s = 0 and
   /// s² − ac = −a < 0 on every ray (the early rejection of `root`).
-  public static var never: EllipsoidFrame {
+  @usableFromInline
+  package static var never: EllipsoidFrame {
     EllipsoidFrame(
       axes: (Vector3(1, 0, 0), Vector3(0, 1, 0), Vector3(0, 0, 1)),
       scales: Vector3(1, 1, 1), offset: .zero, c: 1, tScale: 1,

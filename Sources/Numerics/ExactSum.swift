@@ -16,7 +16,8 @@ import PlatformSupport
 /// subnormal or infinite (`LengthScale` keeps a compiled scene's lengths
 /// within 2^±255 of 1 in Double, whose products of three lengths stay far
 /// inside the range).
-public struct ExactSum {
+@usableFromInline
+package struct ExactSum {
   /// The components, in increasing magnitude, in `storage[0..<count]`.
   @usableFromInline var storage: [Double]
   @usableFromInline var count = 0
@@ -24,17 +25,17 @@ public struct ExactSum {
   /// Room for `capacity` components to start with (a sum of n terms never
   /// has more than n); it grows if needed.
   @inlinable
-  public init(capacity: Int = 16) {
+  package init(capacity: Int = 16) {
     storage = Array(repeating: 0, count: capacity)
   }
 
   /// The components, smallest first.
-  @inlinable public var components: ArraySlice<Double> { storage[0..<count] }
+  @inlinable package var components: ArraySlice<Double> { storage[0..<count] }
 
   /// Adds `term` exactly (Shewchuk's Grow-Expansion, zeros dropped), in
   /// place.
   @inlinable
-  public mutating func add(_ term: Double) {
+  package mutating func add(_ term: Double) {
     guard term != 0 else { return }
     if count == storage.count { storage += repeatElement(0, count: count) }
     let length = count
@@ -59,13 +60,13 @@ public struct ExactSum {
 
   /// Adds a·b exactly.
   @inlinable
-  public mutating func add(_ a: Double, times b: Double) {
+  package mutating func add(_ a: Double, times b: Double) {
     let product = Compensated.twoProduct(a, b)
     add(product.error)
     add(product.product)
   }
 
-  @inlinable public var isZero: Bool { count == 0 }
+  @inlinable package var isZero: Bool { count == 0 }
 
   /// The sum as hi + lo with |lo| ≤ ulp(hi)/2, within a relative 2⁻¹⁰⁴ of
   /// the exact sum: the components added from the smallest with their
@@ -73,7 +74,7 @@ public struct ExactSum {
   /// themselves below an ulp of each partial sum of non-overlapping
   /// components.
   @inlinable
-  public var pair: (hi: Double, lo: Double) {
+  package var pair: (hi: Double, lo: Double) {
     var total = 0.0
     var errors = 0.0
     for index in 0..<count {
@@ -91,7 +92,7 @@ extension RayScalar {
   /// Double, two or three for the reference path's Float80 and
   /// DoubleDouble. Empty for zero.
   @inlinable
-  public var exactDoubles: [Double] {
+  package var exactDoubles: [Double] {
     var rest = self
     var parts: [Double] = []
     while rest != 0 && rest.isFinite && parts.count < 4 {

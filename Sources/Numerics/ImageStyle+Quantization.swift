@@ -6,13 +6,15 @@ import Geometry
 /// (`ImageConventions` in SceneIO, for whole images).
 extension ImageStyle {
   /// The course's depth images ignore hits this far away or farther.
-  public static let courseDepthCutoff = 40.0
+  @usableFromInline
+  package static let courseDepthCutoff = 40.0
 
   /// The depth range an image uses: the given one, or the course's choice
   /// from the image (nearest hit to farthest hit closer than the cutoff; in
   /// the mit style, which normally takes a range from the command line, the
   /// nearest to the farthest hit). Nil when nothing qualifies.
-  public func depthRange<S: RayScalar>(
+  @usableFromInline
+  package func depthRange<S: RayScalar>(
     _ depth: [S], given: ClosedRange<Double>?
   ) -> ClosedRange<Double>? {
     if let given { return given }
@@ -32,7 +34,9 @@ extension ImageStyle {
   @inlinable @inline(__always)
   @_specialize(where S == Double)
   @_specialize(where S == Float)
-  public func pixel<S: RayScalar>(normal: Vector3<S>) -> (UInt8, UInt8, UInt8) {
+  package func pixel<S: RayScalar>(normal: Vector3<S>)
+    -> (UInt8, UInt8, UInt8)
+  {
     switch self {
     case .course:
       pixel(
@@ -46,7 +50,7 @@ extension ImageStyle {
   @inlinable @inline(__always)
   @_specialize(where S == Double)
   @_specialize(where S == Float)
-  public func pixel<S: RayScalar>(_ value: Vector3<S>) -> (UInt8, UInt8, UInt8)
+  package func pixel<S: RayScalar>(_ value: Vector3<S>) -> (UInt8, UInt8, UInt8)
   {
     (quantize(value.x), quantize(value.y), quantize(value.z))
   }
@@ -56,7 +60,7 @@ extension ImageStyle {
   @inlinable @inline(__always)
   @_specialize(where S == Double)
   @_specialize(where S == Float)
-  public func quantize<S: RayScalar>(_ value: S) -> UInt8 {
+  package func quantize<S: RayScalar>(_ value: S) -> UInt8 {
     guard value > 0 else { return 0 }
     guard value < 1 else { return 255 }
     let scaled = value * 255
@@ -79,15 +83,16 @@ extension ImageStyle {
 /// How an engine turns a normal or a colour into an 8-bit pixel, for an
 /// output written only as an 8-bit image: its style's rule
 /// (`RenderSettings.quantization`).
-public struct Quantization: Sendable {
+@usableFromInline
+package struct Quantization: Sendable {
   @usableFromInline let style: ImageStyle
 
   @inlinable
-  public init(style: ImageStyle) { self.style = style }
+  package init(style: ImageStyle) { self.style = style }
 
   /// A normal's pixel: |n| per component (course) or (n + 1)/2 (mit).
   @inlinable @inline(__always)
-  public func pixel<S: RayScalar>(normal: Vector3<S>) -> (UInt8, UInt8, UInt8)
+  package func pixel<S: RayScalar>(normal: Vector3<S>) -> (UInt8, UInt8, UInt8)
   {
     style.pixel(normal: normal)
   }
@@ -96,7 +101,7 @@ public struct Quantization: Sendable {
   @inlinable @inline(__always)
   @_specialize(where S == Double)
   @_specialize(where S == Float)
-  public func pixel<S: RayScalar>(_ value: Vector3<S>) -> (UInt8, UInt8, UInt8)
+  package func pixel<S: RayScalar>(_ value: Vector3<S>) -> (UInt8, UInt8, UInt8)
   {
     style.pixel(value)
   }
@@ -105,5 +110,5 @@ public struct Quantization: Sendable {
 extension RenderSettings {
   /// How this image's 8-bit outputs quantise normals and colours.
   @inlinable
-  public var quantization: Quantization { Quantization(style: style) }
+  package var quantization: Quantization { Quantization(style: style) }
 }

@@ -22,7 +22,8 @@ extension LengthScale {
   /// which is exact in that case (each coordinate is within R ≪ |eye| of
   /// the eye's, so x − eye is exact, Sterbenz) and otherwise within half
   /// an ulp of Double in the offset, below the record's own rounding.
-  public static func frame<S: RayScalar>(
+  @usableFromInline
+  package static func frame<S: RayScalar>(
     _ unscaled: consuming Primitives<Double>, eye: Vector3<Double>,
     exponent: Int, as _: S.Type
   ) -> (primitives: Primitives<Double>, eye: Vector3<Double>) {

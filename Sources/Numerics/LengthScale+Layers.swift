@@ -8,23 +8,28 @@ import PlatformSupport
 /// traced with its own power of two (see `LengthScale`).
 extension LengthScale {
   /// A scene's primitives grouped by the scale each is traced at.
-  public struct Layers {
+  @usableFromInline
+  package struct Layers {
     /// What the scene's common scale 2^−`exponent` holds: every primitive
     /// whose squares and distances stay normal there (`tooSmall`). All of
     /// the scene for every scene the project had before, which therefore
     /// runs as before.
-    public var main: Primitives<Double>
-    public var exponent: Int
+    @usableFromInline
+    package var main: Primitives<Double>
+    @usableFromInline
+    package var exponent: Int
     /// The rest, grouped by their own scale (the k of a scene of the
     /// object alone with the same eye: from its lengths seen from the eye,
     /// `Primitive.reach`), largest first; scene order within each group.
-    public var others: [(primitives: Primitives<Double>, exponent: Int)]
+    @usableFromInline
+    package var others: [(primitives: Primitives<Double>, exponent: Int)]
   }
 
   /// `all` split into layers for a render in `S` seen from `eye`: one pass
   /// over the primitives for every scene whose objects all fit its common
   /// scale, a second only when one does not.
-  public static func layers<S: RayScalar>(
+  @usableFromInline
+  package static func layers<S: RayScalar>(
     _ all: consuming Primitives<Double>, eye: Vector3<Double>,
     as _: S.Type
   ) -> Layers {

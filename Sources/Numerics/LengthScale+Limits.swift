@@ -26,7 +26,8 @@ extension LengthScale {
   /// at the origin (`frame` moves such scenes to the eye before scaling).
   ///
   /// What would hold the scene is `precision.remedy`.
-  public static func problem(_ scene: Scene, precision: Precision)
+  @usableFromInline
+  package static func problem(_ scene: Scene, precision: Precision)
     -> String?
   {
     let scale: (Double) -> Double = {
@@ -90,7 +91,8 @@ extension LengthScale {
   /// eye overflow (`tooLargeUnscaled`: a sphere 1e200 from the eye). Every
   /// scene `problem` refuses in double is refused here too. The remedy is
   /// the fast engine (`Remedy.fastEngine`).
-  public static func unscaledProblem(_ scene: Scene) -> String? {
+  @usableFromInline
+  package static func unscaledProblem(_ scene: Scene) -> String? {
     let eye = scene.camera.center
     var extent = Extent(eye: eye)
     extent.measure(.group(scene.root))

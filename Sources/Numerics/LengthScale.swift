@@ -41,12 +41,14 @@ import PlatformSupport
 /// eye span more than the precision's squares hold at the scale of its
 /// distance (a sphere of radius 1e-25 three units from the eye in Float:
 /// brought near 1, its radius squared is 10⁻⁵⁰; `problem`).
-public enum LengthScale {
+@usableFromInline
+package enum LengthScale {
   /// The k of the scale 2^−k for `all` seen from `eye` in precision `S`:
   /// 0 when the largest length seen from the eye is within 2^±(E/4) of 1,
   /// else the exponent of that length, so that the scaled scene's largest
   /// length is in [1, 2).
-  public static func exponent<S: RayScalar>(
+  @usableFromInline
+  package static func exponent<S: RayScalar>(
     _ all: Primitives<Double>, eye: Vector3<Double>, as _: S.Type
   ) -> Int {
     exponent(largestLength(all, eye: eye), as: S.self)
@@ -131,7 +133,8 @@ public enum LengthScale {
   }
 
   /// 2^k as a Double (k within Double's exponent range).
-  public static func factor(_ exponent: Int) -> Double {
+  @usableFromInline
+  package static func factor(_ exponent: Int) -> Double {
     Double(sign: .plus, exponent: exponent, significand: 1)
   }
 }
@@ -191,7 +194,8 @@ extension TransformedSphere<Double> {
 
 extension Primitives {
   /// Every length times `factor`, a power of two (see `LengthScale`).
-  public func scaled(by factor: Scalar) -> Primitives {
+  @usableFromInline
+  package func scaled(by factor: Scalar) -> Primitives {
     var result = Primitives()
     result.spheres = spheres.map { $0.scaled(by: factor) }
     result.planes = planes.map { $0.scaled(by: factor) }
@@ -210,7 +214,8 @@ extension Primitives {
 
 extension Group {
   /// Every length times `factor`, a power of two (see `LengthScale`).
-  public func scaled(by factor: Scalar) -> Group {
+  @usableFromInline
+  package func scaled(by factor: Scalar) -> Group {
     Group(objects.map { $0.scaled(by: factor) })
   }
 }
@@ -219,7 +224,8 @@ extension SceneObject {
   /// Every length times `factor`, a power of two: a transform's matrix M
   /// becomes S·M (its rows scaled; the object, in its own space, is
   /// unchanged) and its inverse M⁻¹·S⁻¹.
-  public func scaled(by factor: Scalar) -> SceneObject {
+  @usableFromInline
+  package func scaled(by factor: Scalar) -> SceneObject {
     switch self {
     case .sphere(let sphere): .sphere(sphere.scaled(by: factor))
     case .plane(let plane): .plane(plane.scaled(by: factor))

@@ -3,14 +3,15 @@ import SceneDescription
 import PlatformSupport
 
 /// The two ways of solving n·(o + t·d) = offset for t, shared by the
-/// public `Plane` and the fast engine, as `SphereIntersection` is for
+/// package `Plane` and the fast engine, as `SphereIntersection` is for
 /// spheres.
-public enum PlaneIntersection {
+@usableFromInline
+package enum PlaneIntersection {
   /// The course's formula, t = (offset − n·o) / (n·d), in working
   /// precision. Both products cancel: the first for an origin near the
   /// plane, the second for a grazing ray.
   @inlinable @inline(__always)
-  public static func naiveT<S: RayScalar>(
+  package static func naiveT<S: RayScalar>(
     normal n: Vector3<S>, offset: S, origin: Vector3<S>,
     direction d: Vector3<S>, after tMin: S, before tMax: S
   ) -> S? {
@@ -36,7 +37,7 @@ public enum PlaneIntersection {
   ///   - isAxisAligned: one non-zero component and no tail: then n·d is a
   ///     single, correctly rounded product that never cancels.
   @inlinable @inline(__always)
-  public static func stableT<S: RayScalar>(
+  package static func stableT<S: RayScalar>(
     normal n: Vector3<S>, normalTail: Vector3<S>, distance k: S,
     isAxisAligned: Bool, direction d: Vector3<S>, after tMin: S,
     before tMax: S
@@ -59,7 +60,7 @@ public enum PlaneIntersection {
 
   /// Whether a normal has exactly one non-zero component.
   @inlinable
-  public static func isAxisAligned<S: RayScalar>(_ n: Vector3<S>) -> Bool {
+  package static func isAxisAligned<S: RayScalar>(_ n: Vector3<S>) -> Bool {
     (n.x != 0 ? 1 : 0) + (n.y != 0 ? 1 : 0) + (n.z != 0 ? 1 : 0) == 1
   }
 }

@@ -16,7 +16,8 @@ import PlatformSupport
 /// read for one precision is not reused for another.
 extension Precision {
   /// The largest finite magnitude of the precision.
-  public var largestFinite: Double {
+  @usableFromInline
+  package var largestFinite: Double {
     switch self {
     case .float: Double(Float.greatestFiniteMagnitude)
     case .double: Double.greatestFiniteMagnitude
@@ -24,7 +25,8 @@ extension Precision {
   }
 
   /// The smallest positive normal magnitude of the precision.
-  public var smallestNormal: Double {
+  @usableFromInline
+  package var smallestNormal: Double {
     switch self {
     case .float: Double(Float.leastNormalMagnitude)
     case .double: Double.leastNormalMagnitude
@@ -35,7 +37,7 @@ extension Precision {
   /// this precision that is zero only when `value` is, and never
   /// subnormal. Cheap: the fast path of every number read.
   @inlinable
-  public func holds(_ value: Double) -> Bool {
+  package func holds(_ value: Double) -> Bool {
     switch self {
     case .double:
       return value.isFinite && (value == 0 || value.isNormal)
@@ -52,7 +54,8 @@ extension Precision {
   ///
   /// The message names the text, the precision and its limit; `remedy`
   /// says what would hold it.
-  public func rangeProblem(_ value: Double, text: String) -> String? {
+  @usableFromInline
+  package func rangeProblem(_ value: Double, text: String) -> String? {
     let overflows =
       value.isInfinite || self == .float && Float(value).isInfinite
     let roundsToZero =
@@ -79,13 +82,14 @@ extension Precision {
 
   /// Whether `value` rounds to a finite number in this precision.
   @inlinable
-  public func isFinite(_ value: Double) -> Bool {
+  package func isFinite(_ value: Double) -> Bool {
     self == .float ? Float(value).isFinite : value.isFinite
   }
 
   /// The message for a derived quantity (a Transform's matrix, a point it
   /// moves) that leaves the precision's finite range.
-  public func overflowSuffix() -> String {
+  @usableFromInline
+  package func overflowSuffix() -> String {
     self == .float
       ? "beyond the finite range of float"
       : "beyond the finite range of double"
@@ -105,7 +109,10 @@ extension Precision {
     writesNonZero(bytes: text.utf8)
   }
 
-  public static func writesNonZero<Bytes: Sequence<UInt8>>(bytes: Bytes) -> Bool {
+  @usableFromInline
+  package static func writesNonZero<Bytes: Sequence<UInt8>>(bytes: Bytes)
+    -> Bool
+  {
     for byte in bytes {
       switch byte {
       case UInt8(ascii: "1")...UInt8(ascii: "9"): return true
@@ -120,7 +127,8 @@ extension Precision {
 
   /// Whether `text` is a decimal number (digits, a sign, a point, an
   /// exponent) rather than a word such as "inf" or "nan".
-  public static func isDecimal(_ text: String) -> Bool {
+  @usableFromInline
+  package static func isDecimal(_ text: String) -> Bool {
     text.utf8.allSatisfy {
       ($0 >= UInt8(ascii: "0") && $0 <= UInt8(ascii: "9"))
         || $0 == UInt8(ascii: "+") || $0 == UInt8(ascii: "-")

@@ -4,36 +4,50 @@ import PlatformSupport
 
 /// A sphere under a transform that is not a similarity: an ellipsoid,
 /// intersected in the sphere's own space.
-public struct TransformedSphere<Scalar: RayScalar>: Hashable, Sendable {
-  public var sphere: Sphere<Scalar>
-  public var matrix: Matrix4<Scalar>
-  public var inverse: Matrix4<Scalar>
+@usableFromInline
+package struct TransformedSphere<Scalar: RayScalar>: Hashable, Sendable {
+  @usableFromInline
+  package var sphere: Sphere<Scalar>
+  @usableFromInline
+  package var matrix: Matrix4<Scalar>
+  @usableFromInline
+  package var inverse: Matrix4<Scalar>
 }
 
 /// Every primitive of a scene graph with its transforms applied: in world
 /// space where that is exact enough (triangles, planes, spheres under
 /// similarities), as transformed spheres otherwise.
-public struct Primitives<Scalar: RayScalar>: Sendable {
-  public var spheres: [Sphere<Scalar>] = []
-  public var planes: [Plane<Scalar>] = []
+@usableFromInline
+package struct Primitives<Scalar: RayScalar>: Sendable {
+  @usableFromInline
+  package var spheres: [Sphere<Scalar>] = []
+  @usableFromInline
+  package var planes: [Plane<Scalar>] = []
   /// Loose triangles and meshes in file order.
-  public var triangles = TriangleList<Scalar>()
-  public var transformedSpheres: [TransformedSphere<Scalar>] = []
+  @usableFromInline
+  package var triangles = TriangleList<Scalar>()
+  @usableFromInline
+  package var transformedSpheres: [TransformedSphere<Scalar>] = []
   /// Shapes of other kinds (`SceneObject.shape`), placed by their
   /// transforms, in Double and in the world's units whatever the render.
-  public var shapes: [PlacedShape] = []
+  @usableFromInline
+  package var shapes: [PlacedShape] = []
 }
 
 /// A shape of one's own (`SceneObject.shape`) where the scene's transforms
 /// put it: the fast engine hits it through its `Hittable` conformance, the
 /// ray taken into the shape's space (`CompiledScene.testShapes`).
-public struct PlacedShape: Sendable {
-  public var shape: any Hittable
+@usableFromInline
+package struct PlacedShape: Sendable {
+  @usableFromInline
+  package var shape: any Hittable
   /// M, which places the shape's points P at M·P, and M⁻¹; nil when no
   /// transform places it.
-  public var placement: (matrix: Matrix4<Double>, inverse: Matrix4<Double>)?
+  @usableFromInline
+  package var placement: (matrix: Matrix4<Double>, inverse: Matrix4<Double>)?
 
-  public init(
+  @usableFromInline
+  package init(
     _ shape: any Hittable,
     placement: (matrix: Matrix4<Double>, inverse: Matrix4<Double>)? = nil
   ) {
@@ -45,7 +59,8 @@ public struct PlacedShape: Sendable {
 extension Group {
   /// The primitives as one group in the world, kind by kind: spheres,
   /// planes, triangles, then each ellipsoid as a transform of its sphere.
-  public init(_ all: Primitives<Scalar>) {
+  @usableFromInline
+  package init(_ all: Primitives<Scalar>) {
     var objects: [SceneObject] = all.spheres.map { .sphere($0) }
     objects += all.planes.map { .plane($0) }
     // Each run of loose triangles as a mesh of them: hit as the triangles
@@ -72,7 +87,8 @@ extension Group {
 extension Group {
   /// Every primitive, nested groups and transforms flattened, in file order
   /// within each kind.
-  public func flattened() -> Primitives<Scalar> {
+  @usableFromInline
+  package func flattened() -> Primitives<Scalar> {
     var result = Primitives<Scalar>()
     // Counted first so that each array is allocated once: growing the
     // array of 10⁶ spheres by doubling copied it over and over, and made
@@ -198,7 +214,8 @@ extension Matrix4 {
   /// s when the linear part is s times a rotation (LᵀL = s²·I to within
   /// 16 ε relative) and the matrix is affine: a sphere then stays a sphere
   /// of radius r·s, and is best kept as one.
-  public var similarityScale: Scalar? {
+  @usableFromInline
+  package var similarityScale: Scalar? {
     guard isAffine else { return nil }
     let columns = [
       Vector3(m00, m10, m20), Vector3(m01, m11, m21), Vector3(m02, m12, m22),

@@ -1,7 +1,8 @@
 /// What a user can do about a scene that a precision or an engine cannot
 /// hold. Messages below the executable say what is wrong; the executable,
 /// which knows its own options, words the remedy.
-public enum Remedy: Sendable, Hashable {
+@usableFromInline
+package enum Remedy: Sendable, Hashable {
   /// The scene fits in Double where it does not in Float.
   case doublePrecision
   /// The fast engine, which scales its lengths, draws what the course
@@ -12,5 +13,6 @@ public enum Remedy: Sendable, Hashable {
 extension Precision {
   /// The remedy for a number or a transform this precision cannot hold:
   /// Double for Float, none for Double.
-  public var remedy: Remedy? { self == .float ? .doublePrecision : nil }
+  @usableFromInline
+  package var remedy: Remedy? { self == .float ? .doublePrecision : nil }
 }

@@ -3,11 +3,12 @@ import SceneDescription
 import PlatformSupport
 
 /// The two ways of solving |o + t·d − centre|² = r² for t, shared by the
-/// public `Sphere` and the render loop.
+/// package `Sphere` and the render loop.
 ///
 /// Both return the nearest root in the open interval (tMin, tMax), so a ray
 /// starting inside the sphere (or on it, with tMin = 0) hits the far side.
-public enum SphereIntersection {
+@usableFromInline
+package enum SphereIntersection {
   /// The course's textbook formula, kept for comparison and for the course's
   /// images: a = d·d, b = 2f·d, c = f·f − r² with f = o − centre,
   /// t = (−b ∓ √(b² − 4ac)) / 2a.
@@ -16,7 +17,7 @@ public enum SphereIntersection {
   /// (every digit lost once L/r ≳ ε^(−1/2)); −b + √Δ cancels for the far root;
   /// and c = |f|² − r² cancels for a huge sphere seen from close by.
   @inlinable @inline(__always)
-  public static func naiveRoot<S: RayScalar>(
+  package static func naiveRoot<S: RayScalar>(
     origin: Vector3<S>, direction: Vector3<S>,
     center: Vector3<S>, radius: S, after tMin: S, before tMax: S
   ) -> S? {
@@ -49,7 +50,7 @@ public enum SphereIntersection {
   ///   smaller root, where the ray enters the sphere; nil on a miss,
   ///   including a tangent ray whose double root lies outside the interval.
   @inlinable @inline(__always)
-  public static func stableRoot<S: RayScalar>(
+  package static func stableRoot<S: RayScalar>(
     direction d: Vector3<S>, lengthSquared a: S,
     inverseLengthSquared inverseA: S,
     offset p: Vector3<S>, c: S, radiusSquared: S,
@@ -66,12 +67,15 @@ public enum SphereIntersection {
   /// as `stableRoot` computes them on its way to a root of a sphere whose
   /// discriminant cancels (a small far one): the normal's far form
   /// (`stableNormal`) needs exactly these values again.
-  public struct ClosestApproach<S: RayScalar>: Sendable {
-    public var offset: Vector3<S>
-    public var root: S
+  @usableFromInline
+  package struct ClosestApproach<S: RayScalar>: Sendable {
+    @usableFromInline
+    package var offset: Vector3<S>
+    @usableFromInline
+    package var root: S
 
     @inlinable
-    public init(offset: Vector3<S>, root: S) {
+    package init(offset: Vector3<S>, root: S) {
       self.offset = offset
       self.root = root
     }
@@ -81,7 +85,7 @@ public enum SphereIntersection {
   /// when it computed them (the cancelling case) and to nil otherwise, on
   /// a hit; on a miss `approach` is unspecified.
   @inlinable @inline(__always)
-  public static func stableRoot<S: RayScalar>(
+  package static func stableRoot<S: RayScalar>(
     direction d: Vector3<S>, lengthSquared a: S,
     inverseLengthSquared inverseA: S,
     offset p: Vector3<S>, c: S, radiusSquared: S,
@@ -144,7 +148,7 @@ public enum SphereIntersection {
   /// where l itself is inaccurate; there the full normalisation runs.
   /// This saves a square root and a division on every hit.
   @inlinable @inline(__always)
-  public static func stableNormal<S: RayScalar>(
+  package static func stableNormal<S: RayScalar>(
     direction d: Vector3<S>, lengthSquared a: S,
     inverseLengthSquared inverseA: S,
     offset p: Vector3<S>, radiusSquared: S, inverseRadius: S, entering: Bool
@@ -161,7 +165,7 @@ public enum SphereIntersection {
   /// `stableNormal` from the closest-approach values `stableRoot` found
   /// (the same bits as computing them again).
   @inlinable @inline(__always)
-  public static func stableNormal<S: RayScalar>(
+  package static func stableNormal<S: RayScalar>(
     direction d: Vector3<S>, inverseLengthSquared inverseA: S,
     approach: ClosestApproach<S>, inverseRadius: S, entering: Bool
   ) -> Vector3<S> {
@@ -190,7 +194,7 @@ public enum SphereIntersection {
   /// search kept what `stableRoot` computed for this hit, which saves
   /// computing the same l and r² − |l|² a second time.
   @inlinable @inline(__always)
-  public static func stableNormal<S: RayScalar>(
+  package static func stableNormal<S: RayScalar>(
     direction d: Vector3<S>, lengthSquared a: S,
     inverseLengthSquared inverseA: S, t: S,
     offset p: Vector3<S>, c: S, radiusSquared: S, inverseRadius: S,
@@ -218,14 +222,14 @@ public enum SphereIntersection {
   /// to within a few ulps, and with a = 1 + δ, 2 − a is 1/a to within
   /// δ² < ε once |δ| < 2^−26, which saves a division per ray.
   @inlinable @inline(__always)
-  public static func inverseLengthSquared<S: RayScalar>(_ a: S) -> S {
+  package static func inverseLengthSquared<S: RayScalar>(_ a: S) -> S {
     let deviation = a - 1
     return deviation.magnitude < 0x1p-26 ? 1 - deviation : 1 / a
   }
 
   /// The course's normal: (o + t·d − centre), normalised.
   @inlinable
-  public static func naiveNormal<S: RayScalar>(
+  package static func naiveNormal<S: RayScalar>(
     origin: Vector3<S>, direction: Vector3<S>, center: Vector3<S>, t: S
   ) -> Vector3<S> {
     (origin + direction * t - center).normalized()

@@ -20,10 +20,12 @@ import PlatformSupport
 /// rounded normal n, summed compensated, stands in only where the exact
 /// plane cannot be made (vertices exactly collinear in Double but not as
 /// rounded).
-public enum TrianglePlane {
+@usableFromInline
+package enum TrianglePlane {
   /// How far (in multiples of its plane's distance from the eye) a
   /// triangle's vertices must reach before its t is taken from the plane.
-  public static let reach = 1024.0
+  @usableFromInline
+  package static let reach = 1024.0
 
   /// The plane of a triangle seen from an origin o: its unit normal n (the
   /// geometric normal of the vertices relative to o) and k = n·(v0 − o),
@@ -34,7 +36,8 @@ public enum TrianglePlane {
   ///     test and the records hold them).
   ///   - v0, origin: the first vertex and o in the scene's precision, from
   ///     which v0 − o is taken exactly.
-  public static func make<Input: RayScalar, S: RayScalar>(
+  @usableFromInline
+  package static func make<Input: RayScalar, S: RayScalar>(
     relative: (Vector3<S>, Vector3<S>, Vector3<S>), normal n: Vector3<S>,
     v0: Vector3<Input>, origin: Vector3<Input>
   ) -> (normal: Vector3<S>, distance: S)? {

@@ -3,7 +3,7 @@ import SceneDescription
 import PlatformSupport
 
 /// The watertight ray–triangle test of Woop, Benthin and Wald, "Watertight
-/// Ray/Triangle Intersection", JCGT 2(1), 2013, shared by the public
+/// Ray/Triangle Intersection", JCGT 2(1), 2013, shared by the package
 /// `Triangle` and the render loop.
 ///
 ///     let prepared = WatertightRay(ray)          // once per ray
@@ -36,7 +36,8 @@ import PlatformSupport
 ///   exact; a ray parallel to the plane but off it misses. `Triangle` also
 ///   rejects hits on triangles whose geometric normal is zero, for collinear
 ///   vertices whose rounded projection is not exactly collinear.
-public enum TriangleIntersection {
+@usableFromInline
+package enum TriangleIntersection {
   /// The nearest-in-interval hit of the prepared ray with triangle
   /// (v0, v1, v2), or nil.
   ///
@@ -52,7 +53,7 @@ public enum TriangleIntersection {
   ///   absolute error of a few ε times (distance from the origin / size of
   ///   the triangle): the shear subtracts nearly equal numbers.
   @inlinable
-  public static func intersect<S: RayScalar>(
+  package static func intersect<S: RayScalar>(
     _ ray: WatertightRay<S>, _ v0: Vector3<S>, _ v1: Vector3<S>,
     _ v2: Vector3<S>, after tMin: S, before tMax: S
   ) -> (t: S, u: S, v: S, w: S)? {
@@ -65,7 +66,7 @@ public enum TriangleIntersection {
   /// against many rays that share origin and permutation (a screen tile's)
   /// is permuted once for all of them.
   @inlinable @inline(__always)
-  public static func intersect<S: RayScalar>(
+  package static func intersect<S: RayScalar>(
     _ ray: WatertightRay<S>, _ triangle: PermutedTriangle<S>,
     after tMin: S, before tMax: S
   ) -> (t: S, u: S, v: S, w: S)? {
@@ -77,7 +78,7 @@ public enum TriangleIntersection {
   /// functions decide hit or miss on the ray's whole line and give the
   /// same barycentrics, bit for bit; t is the plane's, in (tMin, tMax).
   @inlinable @inline(__always)
-  public static func intersect<S: RayScalar>(
+  package static func intersect<S: RayScalar>(
     _ ray: WatertightRay<S>, _ triangle: PermutedTriangle<S>,
     plane: TrianglePlane.Exact<S>, after tMin: S, before tMax: S
   ) -> (t: S, u: S, v: S, w: S)? {
@@ -89,7 +90,7 @@ public enum TriangleIntersection {
   /// looks up a triangle's plane for the few rays that reach it), or the
   /// watertight test's t when it gives none.
   @inlinable @inline(__always)
-  public static func intersect<S: RayScalar>(
+  package static func intersect<S: RayScalar>(
     _ ray: WatertightRay<S>, _ triangle: PermutedTriangle<S>,
     after tMin: S, before tMax: S,
     exactPlane: () -> TrianglePlane.Exact<S>?
@@ -124,7 +125,7 @@ public enum TriangleIntersection {
   /// engine's large triangles, which take t from their plane, use it where
   /// that holds (`LargeTrianglePlane.edgesDecide`).
   @inlinable @inline(__always)
-  public static func covers<S: RayScalar>(
+  package static func covers<S: RayScalar>(
     _ ray: WatertightRay<S>, _ v0: Vector3<S>, _ v1: Vector3<S>,
     _ v2: Vector3<S>
   ) -> Bool {
@@ -207,13 +208,17 @@ public enum TriangleIntersection {
 /// the watertight test, before the shear. It depends on the ray only
 /// through its origin and permutation, so rays that share both (a screen
 /// tile's, as a rule) can share it.
-public struct PermutedTriangle<S: RayScalar>: Sendable {
-  public var a: Vector3<S>
-  public var b: Vector3<S>
-  public var c: Vector3<S>
+@usableFromInline
+package struct PermutedTriangle<S: RayScalar>: Sendable {
+  @usableFromInline
+  package var a: Vector3<S>
+  @usableFromInline
+  package var b: Vector3<S>
+  @usableFromInline
+  package var c: Vector3<S>
 
   @inlinable @inline(__always)
-  public init(
+  package init(
     _ ray: WatertightRay<S>, _ v0: Vector3<S>, _ v1: Vector3<S>,
     _ v2: Vector3<S>
   ) {
@@ -231,7 +236,7 @@ extension WatertightRay {
   /// this ray as for `other`: the same permutation and the same origin,
   /// zeros' signs included (v − 0 and v − (−0) differ for v = −0).
   @inlinable @inline(__always)
-  public func sharesFrame(with other: WatertightRay) -> Bool {
+  package func sharesFrame(with other: WatertightRay) -> Bool {
     func same(_ p: S, _ q: S) -> Bool { p == q && p.sign == q.sign }
     return kx == other.kx && ky == other.ky && kz == other.kz
       && same(origin.x, other.origin.x) && same(origin.y, other.origin.y)
@@ -250,21 +255,30 @@ extension WatertightRay {
 /// triangles' winding (the sign of the edge functions) as seen from the
 /// ray. A zero or non-finite direction gives NaN shears, and every
 /// triangle misses.
-public struct WatertightRay<S: RayScalar>: Hashable, Sendable {
-  public var origin: Vector3<S>
+@usableFromInline
+package struct WatertightRay<S: RayScalar>: Hashable, Sendable {
+  @usableFromInline
+  package var origin: Vector3<S>
   /// The ray's direction, for the plane of large triangles
   /// (`TrianglePlane`).
-  public var direction: Vector3<S>
-  public var kx: Int
-  public var ky: Int
-  public var kz: Int
+  @usableFromInline
+  package var direction: Vector3<S>
+  @usableFromInline
+  package var kx: Int
+  @usableFromInline
+  package var ky: Int
+  @usableFromInline
+  package var kz: Int
   /// d[kx]/d[kz], d[ky]/d[kz] and 1/d[kz].
-  public var shearX: S
-  public var shearY: S
-  public var shearZ: S
+  @usableFromInline
+  package var shearX: S
+  @usableFromInline
+  package var shearY: S
+  @usableFromInline
+  package var shearZ: S
 
   @inlinable
-  public init(_ ray: Ray<S>) {
+  package init(_ ray: Ray<S>) {
     let d = ray.direction
     let x = d.x.magnitude
     let y = d.y.magnitude

@@ -10,24 +10,28 @@ import PlatformSupport
 /// As a collection it yields the triangles one by one, each made on demand
 /// (`TriangleMesh.triangle(at:)`), in the order the scene gives them; its
 /// equality is that of the triangles in order, whatever parts hold them.
-public struct TriangleList<Scalar: RayScalar>: Sendable {
+@usableFromInline
+package struct TriangleList<Scalar: RayScalar>: Sendable {
   /// The meshes, in order.
-  public private(set) var parts: [TriangleMesh<Scalar>] = []
+  package private(set) var parts: [TriangleMesh<Scalar>] = []
   /// Per part, the count of triangles up to its end.
   private var ends: [Int] = []
   /// Whether the last part gathers loose triangles, and may grow; a mesh
   /// appended whole is shared with the scene and never grown.
   private var lastPartIsLoose = false
 
-  public init() {}
+  @usableFromInline
+  package init() {}
 
   /// The triangles in order, gathered into one mesh.
-  public init(_ triangles: some Sequence<Triangle<Scalar>>) {
+  @usableFromInline
+  package init(_ triangles: some Sequence<Triangle<Scalar>>) {
     for triangle in triangles { append(triangle) }
   }
 
   /// Appends a loose triangle.
-  public mutating func append(_ triangle: Triangle<Scalar>) {
+  @usableFromInline
+  package mutating func append(_ triangle: Triangle<Scalar>) {
     if !lastPartIsLoose {
       parts.append(TriangleMesh())
       ends.append(ends.last ?? 0)
@@ -38,7 +42,8 @@ public struct TriangleList<Scalar: RayScalar>: Sendable {
   }
 
   /// Appends a mesh's triangles, sharing its storage.
-  public mutating func append(_ mesh: TriangleMesh<Scalar>) {
+  @usableFromInline
+  package mutating func append(_ mesh: TriangleMesh<Scalar>) {
     guard !mesh.isEmpty else { return }
     parts.append(mesh)
     ends.append((ends.last ?? 0) + mesh.count)
@@ -57,11 +62,14 @@ public struct TriangleList<Scalar: RayScalar>: Sendable {
 }
 
 extension TriangleList: RandomAccessCollection {
-  public var startIndex: Int { 0 }
-  public var endIndex: Int { ends.last ?? 0 }
+  @usableFromInline
+  package var startIndex: Int { 0 }
+  @usableFromInline
+  package var endIndex: Int { ends.last ?? 0 }
 
   /// - Complexity: O(log of the number of parts).
-  public subscript(position: Int) -> Triangle<Scalar> {
+  @usableFromInline
+  package subscript(position: Int) -> Triangle<Scalar> {
     // The first part ending after `position`.
     var (low, high) = (0, ends.count - 1)
     while low < high {
@@ -72,12 +80,14 @@ extension TriangleList: RandomAccessCollection {
     return parts[low].triangle(at: position - start)
   }
 
-  public struct Iterator: IteratorProtocol {
+  @usableFromInline
+  package struct Iterator: IteratorProtocol {
     let parts: [TriangleMesh<Scalar>]
     var part = 0
     var index = 0
 
-    public mutating func next() -> Triangle<Scalar>? {
+    @usableFromInline
+    package mutating func next() -> Triangle<Scalar>? {
       while part < parts.count {
         if index < parts[part].count {
           defer { index += 1 }
@@ -91,18 +101,21 @@ extension TriangleList: RandomAccessCollection {
   }
 
   /// Part by part, without a search per triangle.
-  public func makeIterator() -> Iterator { Iterator(parts: parts) }
+  @usableFromInline
+  package func makeIterator() -> Iterator { Iterator(parts: parts) }
 }
 
 extension TriangleList: Equatable {
   /// The same triangles in the same order.
-  public static func == (lhs: TriangleList, rhs: TriangleList) -> Bool {
+  @usableFromInline
+  package static func == (lhs: TriangleList, rhs: TriangleList) -> Bool {
     lhs.count == rhs.count && lhs.elementsEqual(rhs)
   }
 }
 
 extension TriangleList: ExpressibleByArrayLiteral {
-  public init(arrayLiteral triangles: Triangle<Scalar>...) {
+  @usableFromInline
+  package init(arrayLiteral triangles: Triangle<Scalar>...) {
     self.init(triangles)
   }
 }

@@ -37,22 +37,28 @@ extension TrianglePlane {
   /// triangle's t is taken from its exact plane. Below it the watertight
   /// t is within a few ulps (measured in `TriangleAccuracyTests`), and
   /// the triangles of ordinary meshes (factor 1.2 to 3) never reach it.
-  public static let conditionLimit = 16.0
+  @usableFromInline
+  package static let conditionLimit = 16.0
 
   /// A triangle's plane seen from the eye, as the render reads it.
-  public struct Exact<S: RayScalar>: Sendable {
+  @usableFromInline
+  package struct Exact<S: RayScalar>: Sendable {
     /// The normal, rounded to S, of length in [½, 1).
-    public var normal: Vector3<S>
+    @usableFromInline
+    package var normal: Vector3<S>
     /// The normal's digits beyond `normal`, rounded to S.
-    public var normalTail: Vector3<S>
+    @usableFromInline
+    package var normalTail: Vector3<S>
     /// n·(v0 − o), exact for n = normal + normalTail, rounded once.
-    public var distance: S
+    @usableFromInline
+    package var distance: S
     /// One non-zero component and no tail: n·d is then one rounded
     /// product.
-    public var isAxisAligned: Bool
+    @usableFromInline
+    package var isAxisAligned: Bool
 
     @inlinable
-    public init(
+    package init(
       normal: Vector3<S>, normalTail: Vector3<S>, distance: S,
       isAxisAligned: Bool
     ) {
@@ -64,7 +70,7 @@ extension TrianglePlane {
 
     /// The plane's t for a ray from o along d, in (tMin, tMax), or nil.
     @inlinable @inline(__always)
-    public func t(direction d: Vector3<S>, after tMin: S, before tMax: S)
+    package func t(direction d: Vector3<S>, after tMin: S, before tMax: S)
       -> S?
     {
       PlaneIntersection.stableT(
@@ -88,7 +94,7 @@ extension TrianglePlane {
   /// triangle's box (in max-norm, never more than the true distance), so a
   /// triangle seen edge-on from afar is not taken for a large one.
   @inlinable
-  public static func needsExactT<S: RayScalar>(
+  package static func needsExactT<S: RayScalar>(
     relative: (Vector3<S>, Vector3<S>, Vector3<S>)
   ) -> Bool {
     let (a, b, c) = relative
@@ -126,7 +132,8 @@ extension TrianglePlane {
   /// is summed from the exact products of the stored normal and the exact
   /// differences v0 − o as if in twice Double's precision (Sum2, as the
   /// camera-relative constants of spheres are) and rounded once.
-  public static func exact<S: RayScalar>(
+  @usableFromInline
+  package static func exact<S: RayScalar>(
     _ v0: Vector3<Double>, _ v1: Vector3<Double>, _ v2: Vector3<Double>,
     origin: Vector3<Double>, as _: S.Type = S.self
   ) -> Exact<S>? {

@@ -238,14 +238,14 @@ package struct OBJTriangle: Hashable, Sendable {
 
   /// Indices into `OBJMesh.normals`, or nil for a face without normals.
   @inlinable
-  public var normalIndices: SIMD3<Int32>? {
+  package var normalIndices: SIMD3<Int32>? {
     get { normalStorage.x < 0 ? nil : normalStorage }
     set { normalStorage = newValue ?? SIMD3(repeating: -1) }
   }
 
   /// Indices into `OBJMesh.textureCoordinates`, or nil.
   @inlinable
-  public var textureIndices: SIMD3<Int32>? {
+  package var textureIndices: SIMD3<Int32>? {
     get { textureStorage.x < 0 ? nil : textureStorage }
     set { textureStorage = newValue ?? SIMD3(repeating: -1) }
   }
