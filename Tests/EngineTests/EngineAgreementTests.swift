@@ -147,8 +147,8 @@ final class EngineAgreementTests: XCTestCase {
     var hits = 0
     for row in 0..<24 {
       for column in 0..<32 {
-        let x: Double = ScreenMap(style: ImageStyle.course, width: 32, height: 1).x(column: column)
-        let y: Double = ScreenMap(style: ImageStyle.course, width: 1, height: 24).y(row: row)
+        let x: Double = settings.screen.x(column: column)
+        let y: Double = settings.screen.y(row: row)
         let ray = Ray<Double>(
           origin: scene.camera.center,
           direction: scene.camera.rayDirection(x: x, y: y, aspect: 0.75))

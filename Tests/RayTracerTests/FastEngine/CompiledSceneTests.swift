@@ -39,8 +39,8 @@ final class CompiledSceneTests: XCTestCase {
     var hits = 0
     for row in 0..<height {
       for column in 0..<width {
-        let x: Double = ScreenMap(style: ImageStyle.course, width: width, height: 1).x(column: column)
-        let y: Double = ScreenMap(style: ImageStyle.course, width: 1, height: height).y(row: row)
+        let x: Double = settings.screen.x(column: column)
+        let y: Double = settings.screen.y(row: row)
         let ray = Ray(
           origin: camera.center,
           direction: camera.rayDirection(x: x, y: y, aspect: aspect))

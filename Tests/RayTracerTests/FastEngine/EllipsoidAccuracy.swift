@@ -137,14 +137,13 @@ struct EllipsoidAccuracy: CustomStringConvertible {
     let epsilon = Double(R.ulpOfOne)
     // The camera rays exactly as `Renderer.renderRow` forms them.
     let camera = PerspectiveCamera<R>(scene.camera)
-    let style = settings.style
     let aspect = R(height) / R(width)
     var result = EllipsoidAccuracy()
     for row in 0..<height {
-      let y: R = ScreenMap(style: style, width: 1, height: height).y(row: row)
+      let y: R = settings.screen.y(row: row)
       let rowBase = camera.rowBase(y: y, aspect: aspect)
       for column in 0..<width {
-        let x: R = ScreenMap(style: style, width: width, height: 1).x(column: column)
+        let x: R = settings.screen.x(column: column)
         let direction = Vector3<Double>(
           camera.rayDirection(x: x, rowBase: rowBase))
         let pixel = row * width + column

@@ -101,8 +101,8 @@ final class ShapeHierarchyTests: XCTestCase {
       let row = pixel / settings.width
       let direction = settings.camera(spheres.camera, as: Double.self)
         .rayDirection(
-          x: ScreenMap(style: settings.style, width: settings.width, height: 1).x(column: column),
-          y: ScreenMap(style: settings.style, width: 1, height: settings.height).y(row: row),
+          x: settings.screen.x(column: column),
+          y: settings.screen.y(row: row),
           aspect: Double(settings.height) / Double(settings.width))
       guard abs(want.normals[pixel].dot(direction)) > 0.1 else { continue }
       XCTAssertEqual(

@@ -331,10 +331,10 @@ final class TriangleAccuracyTests: XCTestCase {
       var worst = 0.0
       var hits = 0
       for row in 0..<height {
-        let y: S = ScreenMap(style: settings.style, width: 1, height: height).y(row: row)
+        let y: S = settings.screen.y(row: row)
         let rowBase = camera.rowBase(y: y, aspect: aspect)
         for column in 0..<width {
-          let x: S = ScreenMap(style: settings.style, width: width, height: 1).x(column: column)
+          let x: S = settings.screen.x(column: column)
           let direction = Vector3<Double>(
             camera.rayDirection(x: x, rowBase: rowBase))
           let t = depth[row * width + column]

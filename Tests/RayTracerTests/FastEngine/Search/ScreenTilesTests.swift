@@ -228,18 +228,18 @@ final class ScreenTilesTests: XCTestCase {
       let compiled = CompiledScene<Kernel>(scene, projectionThreshold: 0)
       for style in ImageStyle.allCases {
         let camera = styled(compiled.camera, style)
+        let screen = ScreenMap(style: style, width: width, height: height)
         let projection = ScreenProjection(
-          camera: PerspectiveCamera<Double>(camera),
-          screen: ScreenMap(style: style, width: width, height: height))
+          camera: PerspectiveCamera<Double>(camera), screen: screen)
         let aspect = Kernel.Scalar(height) / Kernel.Scalar(width)
         var (outside, hits) = (0, 0)
         for record in compiled.spheres {
           let (center, reach) = compiled.cullBound(record)
           let box = projection.pixelBox(center: center, reach: reach)
           for row in 0..<height {
-            let y: Kernel.Scalar = ScreenMap(style: style, width: 1, height: height).y(row: row)
+            let y: Kernel.Scalar = screen.y(row: row)
             for column in 0..<width {
-              let x: Kernel.Scalar = ScreenMap(style: style, width: width, height: 1).x(column: column)
+              let x: Kernel.Scalar = screen.x(column: column)
               let ray = CameraRay(
                 origin: compiled.rayOrigin,
                 direction: camera.rayDirection(

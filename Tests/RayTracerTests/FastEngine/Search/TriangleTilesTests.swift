@@ -263,9 +263,9 @@ final class TriangleTilesTests: XCTestCase {
         scene, triangleProjectionThreshold: 0)
       for style in ImageStyle.allCases {
         let camera = styled(compiled.camera, style)
+        let screen = ScreenMap(style: style, width: width, height: height)
         let projection = ScreenProjection(
-          camera: PerspectiveCamera<Double>(camera),
-          screen: ScreenMap(style: style, width: width, height: height))
+          camera: PerspectiveCamera<Double>(camera), screen: screen)
         let aspect = Kernel.Scalar(height) / Kernel.Scalar(width)
         for (index, record) in compiled.triangles.enumerated() {
           let box = compiled.triangleBox(record, projection, margin: 0)
@@ -275,8 +275,8 @@ final class TriangleTilesTests: XCTestCase {
             : compiled.trianglePlanes[index - compiled.ordinaryTriangleCount]
           for row in 0..<height {
             for column in 0..<width {
-              let x: Kernel.Scalar = ScreenMap(style: style, width: width, height: 1).x(column: column)
-              let y: Kernel.Scalar = ScreenMap(style: style, width: 1, height: height).y(row: row)
+              let x: Kernel.Scalar = screen.x(column: column)
+              let y: Kernel.Scalar = screen.y(row: row)
               let direction = camera.rayDirection(x: x, y: y, aspect: aspect)
               let ray = WatertightRay(
                 Ray(origin: compiled.rayOrigin, direction: direction))

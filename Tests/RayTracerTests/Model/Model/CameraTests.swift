@@ -189,29 +189,26 @@ final class CameraTests: XCTestCase {
   /// pixel above them (the course's own mapping). Mit: pixel corners,
   /// x = 2i/(W − 1) − 1, and 0 for W = 1. Rows run top to bottom.
   func checkScreenCoordinates<T: RayScalar>(_: T.Type) {
-    let course: [T] = (0..<4).map {
-      ScreenMap(style: ImageStyle.course, width: 4, height: 1).x(column: $0)
+    func map(_ style: ImageStyle, _ width: Int, _ height: Int) -> ScreenMap {
+      ScreenMap(style: style, width: width, height: height)
     }
+    let course: [T] = (0..<4).map { map(.course, 4, 1).x(column: $0) }
     XCTAssertEqual(course, [-0.75, -0.25, 0.25, 0.75], "\(T.self): exact")
-    let mit: [T] = (0..<4).map { ScreenMap(style: ImageStyle.mit, width: 4, height: 1).x(column: $0) }
+    let mit: [T] = (0..<4).map { map(.mit, 4, 1).x(column: $0) }
     XCTAssertEqual(mit[0], -1, "\(T.self)")
     XCTAssertEqual(mit[3], 1, "\(T.self)")
-    let courseRows: [T] = (0..<4).map {
-      ScreenMap(style: ImageStyle.course, width: 1, height: 4).y(row: $0)
-    }
+    let courseRows: [T] = (0..<4).map { map(.course, 1, 4).y(row: $0) }
     XCTAssertEqual(
       courseRows, [1.25, 0.75, 0.25, -0.25], "\(T.self): top first, exact")
-    let mitRows: [T] = (0..<3).map {
-      ScreenMap(style: ImageStyle.mit, width: 1, height: 3).y(row: $0)
-    }
+    let mitRows: [T] = (0..<3).map { map(.mit, 1, 3).y(row: $0) }
     XCTAssertEqual(mitRows, [1, 0, -1], "\(T.self): top first, exact")
     for style in ImageStyle.allCases {
       XCTAssertEqual(
-        ScreenMap(style: style, width: 1, height: 1).x(column: 0) as T, 0, "\(style) W = 1")
+        map(style, 1, 1).x(column: 0) as T, 0, "\(style) W = 1")
     }
-    XCTAssertEqual(ScreenMap(style: ImageStyle.mit, width: 1, height: 1).y(row: 0) as T, 0, "H = 1")
+    XCTAssertEqual(map(.mit, 1, 1).y(row: 0) as T, 0, "H = 1")
     XCTAssertEqual(
-      ScreenMap(style: ImageStyle.course, width: 1, height: 1).y(row: 0) as T, 2,
+      map(.course, 1, 1).y(row: 0) as T, 2,
       "course H = 1: one pixel above the only row's centre")
 
     // Against the exact fractions for many sizes: one division and one
@@ -223,10 +220,10 @@ final class CameraTests: XCTestCase {
           ReferenceScalar(2 * i + 1 - width) / ReferenceScalar(width)
         let exactMit =
           ReferenceScalar(2 * i - (width - 1)) / ReferenceScalar(width - 1)
-        let gotCourse: T = ScreenMap(style: ImageStyle.course, width: width, height: 1).x(column: i)
-        let gotMit: T = ScreenMap(style: ImageStyle.mit, width: width, height: 1).x(column: i)
-        let gotCourseRow: T = ScreenMap(style: ImageStyle.course, width: 1, height: width).y(row: i)
-        let gotMitRow: T = ScreenMap(style: ImageStyle.mit, width: 1, height: width).y(row: i)
+        let gotCourse: T = map(.course, width, width).x(column: i)
+        let gotMit: T = map(.mit, width, width).x(column: i)
+        let gotCourseRow: T = map(.course, width, width).y(row: i)
+        let gotMitRow: T = map(.mit, width, width).y(row: i)
         let tolerance = ReferenceScalar(T.ulpOfOne)
         for (name, got, want) in [
           ("course x", gotCourse, exactCourse), ("mit x", gotMit, exactMit),
