@@ -29,6 +29,10 @@ public enum CourseEngine {
       for row in rows {
         var pixels = Image.Row()
         for column in 0..<width {
+          if settings.supersamplesAll {  // every output the samples' mean
+            pixels.append(view.supersampled(column: column, row: row), outputs)
+            continue
+          }
           // The ray through the pixel's centre, and what it hits first.
           let ray = view.ray(column: column, row: row)
           let hit = view.world.intersect(ray, after: 0, before: .infinity)
@@ -41,7 +45,7 @@ public enum CourseEngine {
           if outputs.contains(.shaded) {
             pixels.color.append(
               settings.supersamples
-                ? view.supersampledColor(column: column, row: row)
+                ? view.supersampled(column: column, row: row).color
                 : view.color(ray, hit))
           }
         }
@@ -107,16 +111,25 @@ struct View: Sendable {
     // END SOLUTION
   }
 
-  /// The mean colour of the pixel's jittered samples (`PixelSamples`).
-  func supersampledColor(column: Int, row: Int) -> RGB<Double> {
+  typealias Pixel = (depth: Double, normal: Vector3<Double>, color: RGB<Double>)
+
+  /// The means of the pixel's jittered samples (`PixelSamples`): colour;
+  /// depth over the samples that hit (∞ if none); normal, a miss as zero.
+  func supersampled(column: Int, row: Int) -> Pixel {
     var samples = PixelSamples(
       column: column, row: row, camera: camera, settings: settings)
-    var sum = RGB<Double>.zero
+    var (sum, hits): (Pixel, Int) = ((0, .zero, .zero), 0)
     while let direction = samples.next() {
       let ray = Ray(origin: camera.center, direction: direction)
-      sum += color(ray, world.intersect(ray, after: 0, before: .infinity))
+      let hit = world.intersect(ray, after: 0, before: .infinity)
+      if settings.outputs.contains(.shaded) { sum.color += color(ray, hit) }
+      guard let hit else { continue }
+      (sum.depth, hits) = (sum.depth + hit.t, hits + 1)
+      sum.normal += hit.normal
     }
-    return sum / Double(samples.count)
+    let count = Double(samples.count)
+    sum.depth = hits > 0 ? sum.depth / Double(hits) : .infinity
+    return (sum.depth, sum.normal / count, sum.color / count)
   }
 }
 
@@ -127,40 +140,42 @@ private final class Image: @unchecked Sendable {
     var depth: [Double] = []
     var normals: [Vector3<Double>] = []
     var color: [RGB<Double>] = []
+    mutating func append(_ pixel: View.Pixel, _ outputs: RenderOutputs) {
+      if outputs.contains(.depth) { depth.append(pixel.depth) }
+      if outputs.contains(.normals) { normals.append(pixel.normal) }
+      if outputs.contains(.shaded) { color.append(pixel.color) }
+    }
   }
 
-  private let width: Int
-  private let height: Int
   private let lock = NSLock()
-  private var depth: [Double]
-  private var normals: [Vector3<Double>]
-  private var color: [RGB<Double>]
+  private var image: RenderBuffers<Double>
 
   init(width: Int, height: Int, outputs: RenderOutputs) {
-    self.width = width
-    self.height = height
-    let count = width * height
-    depth = outputs.contains(.depth) ? Array(repeating: 0, count: count) : []
-    normals =
-      outputs.contains(.normals) ? Array(repeating: .zero, count: count) : []
-    color =
-      outputs.contains(.shaded) ? Array(repeating: .zero, count: count) : []
+    func buffer<T>(_ output: RenderOutputs, _ zero: T) -> [T] {
+      outputs.contains(output)
+        ? Array(repeating: zero, count: width * height)
+        : []
+    }
+    image = RenderBuffers(
+      width: width, height: height, depth: buffer(.depth, 0),
+      normals: buffer(.normals, .zero), color: buffer(.shaded, .zero))
   }
 
   func store(_ row: Row, at index: Int) {
-    let pixels = index * width..<(index + 1) * width
+    let pixels = index * image.width..<(index + 1) * image.width
     lock.lock()
     defer { lock.unlock() }
-    if !depth.isEmpty { depth.replaceSubrange(pixels, with: row.depth) }
-    if !normals.isEmpty { normals.replaceSubrange(pixels, with: row.normals) }
-    if !color.isEmpty { color.replaceSubrange(pixels, with: row.color) }
+    func put<T>(_ values: [T], in buffer: inout [T]) {
+      if !buffer.isEmpty { buffer.replaceSubrange(pixels, with: values) }
+    }
+    put(row.depth, in: &image.depth)
+    put(row.normals, in: &image.normals)
+    put(row.color, in: &image.color)
   }
 
   func buffers() -> RenderBuffers<Double> {
     lock.lock()
     defer { lock.unlock() }
-    return RenderBuffers(
-      width: width, height: height, depth: depth, normals: normals,
-      color: color)
+    return image
   }
 }

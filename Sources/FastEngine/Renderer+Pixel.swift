@@ -3,8 +3,8 @@ import SceneDescription
 import Numerics
 import PlatformSupport
 
-/// What a pixel's nearest hit becomes: its depth, normal and colour, and
-/// the colour of a supersampled pixel.
+/// What a pixel's nearest hit becomes: its depth, normal and colour
+/// (a supersampled pixel's: `Renderer+Supersampling`).
 extension Renderer {
   /// Writes a pixel's requested outputs from its nearest hit (nil: none).
   /// `sphereRecord`, when given, is a copy of the record of the sphere the
@@ -89,33 +89,6 @@ extension Renderer {
       sphereRecord ?? scene.spheres[index], ray, t: hit.t, memo: sphereMemo)
   }
 
-  /// One sample's colour: the background for a miss, else the hit shaded
-  /// (from a layer, when one has a nearer hit, as in `store`).
-  @inline(__always)
-  static func sampleColor<Kernel: IntersectionKernel>(
-    _ hit: (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest)?,
-    ray: CameraRay<Kernel.Scalar>, scene: CompiledScene<Kernel>,
-    sphereRecord: Kernel.SphereRecord? = nil,
-    triangleWeights: TriangleWeights<Kernel.Scalar>? = nil, attenuate: Bool
-  ) -> RGB<Kernel.Scalar> {
-    if !scene.layers.isEmpty,
-      let (layer, layerHit, layerRay) = scene.nearerInLayers(ray, than: hit)
-    {
-      let layerScene = scene.layers[layer]
-      return shade(
-        layerHit, ray: layerRay,
-        normal: layerScene.normal(of: layerHit.what, layerRay, t: layerHit.t),
-        scene: layerScene, attenuate: attenuate)
-    }
-    guard let hit else { return scene.background }
-    return shade(
-      hit, ray: ray,
-      normal: normal(
-        of: hit, ray: ray, scene: scene, sphereRecord: sphereRecord,
-        triangleWeights: triangleWeights),
-      scene: scene, attenuate: attenuate)
-  }
-
   @inline(__always)
   static func shade<Kernel: IntersectionKernel>(
     _ hit: (t: Kernel.Scalar, what: CompiledScene<Kernel>.Nearest),
@@ -126,41 +99,5 @@ extension Renderer {
       hit.what, ray,
       point: scene.eye + ray.direction * (hit.t * scene.lengthScale),
       normal: normal, attenuate: attenuate)
-  }
-
-  /// The pixel's colour: the mean of its samples' (`PixelSamples`), their
-  /// spheres found by `search`, which must answer for every ray of the
-  /// pixel's filter support.
-  @inline(__always)
-  static func supersampledColor<
-    Kernel: IntersectionKernel, R: RayScalar, Search: NearestSphereSearch
-  >(
-    column: Int, row: Int, by search: Search, scene: CompiledScene<Kernel>,
-    camera: PerspectiveCamera<R>,
-    settings: RenderSettings
-  ) -> RGB<Kernel.Scalar> {
-    typealias S = Kernel.Scalar
-    var sum = RGB<S>.zero
-    var samples = PixelSamples(
-      column: column, row: row, camera: camera, settings: settings)
-    // The directions first, as for a tile's centre rays (`renderRow`): the
-    // square roots and divisions of one sample overlap the next's instead
-    // of waiting behind each search. The colours are summed in the same
-    // order either way.
-    withUnsafeTemporaryAllocation(of: Vector3<S>.self, capacity: samples.count)
-    { directions in
-      var count = 0
-      while let sample = samples.next() {
-        (directions.baseAddress! + count).initialize(to: Vector3<S>(sample))
-        count += 1
-      }
-      for direction in directions[0..<count] {
-        let ray = CameraRay(origin: scene.rayOrigin, direction: direction)
-        sum += sampleColor(
-          scene.nearest(ray, by: search), ray: ray, scene: scene,
-          attenuate: settings.attenuatesLights)
-      }
-    }
-    return sum / S(samples.count)
   }
 }

@@ -5,14 +5,15 @@ import PlatformSupport
 
 /// The pixel loop of `ScreenTiles` for a supersampled render: the tile's
 /// searches (`renderProjectedTile`'s) done once per sample, every pixel's
-/// k-th sample together, then the samples shaded in loops of their own.
+/// k-th sample together, then the samples shaded in loops of their own
+/// (and their depths and normals summed, when every output is sampled).
 extension Renderer {
-  /// The shaded colours of one tile of a supersampled render: each pixel's
+  /// The supersampled outputs of one tile (`SampleSums.store`): each pixel's
   /// samples (`PixelSamples`) searched as `renderProjectedTile` searches
   /// its centre ray, the k-th sample of every pixel at a time, with boxes
   /// widened by the filter's reach (`ScreenTiles.init`). Each pixel's
-  /// colours are summed in its samples' order, so the image is the one
-  /// `supersampledColor` gives, bit for bit.
+  /// values are summed in its samples' order, so the images are the ones
+  /// `supersample` gives, bit for bit.
   static func renderProjectedSamples<Kernel: IntersectionKernel, R: RayScalar>(
     _ entries: ArraySlice<ScreenTiles<Kernel>.Entry>,
     _ triangleEntries: ArraySlice<ScreenTiles<Kernel>.TriangleEntry>,
@@ -27,12 +28,17 @@ extension Renderer {
       tileColumns.count <= tileWidth
         && rows.count <= ScreenTiles<Kernel>.tileHeight)
     let attenuate = settings.attenuatesLights
+    let all = settings.supersamplesAll
+    let (wantsNormals, shade) = (
+      all && targets.wantsNormals, targets.wantsColor
+    )
     func slot(_ row: Int, _ column: Int) -> Int {
       (row - rows.lowerBound) * tileWidth + column - tileColumns.lowerBound
     }
     withUnsafeTemporaryAllocation(of: PixelSamples<R>.self, capacity: capacity)
     { samples in
-      withUnsafeTemporaryAllocation(of: RGB<S>.self, capacity: capacity) {
+      withUnsafeTemporaryAllocation(of: SampleSums<S>.self, capacity: capacity)
+      {
         sums in
         withUnsafeTemporaryAllocation(of: CameraRay<S>.self, capacity: capacity)
         { rays in
@@ -60,7 +66,7 @@ extension Renderer {
                         (samples.baseAddress! + slot(row, column)).initialize(
                           to: pixel)
                         (sums.baseAddress! + slot(row, column)).initialize(
-                          to: .zero)
+                          to: SampleSums())
                       }
                     }
                     for _ in 0..<count {
@@ -110,28 +116,45 @@ extension Renderer {
                       // `sampleColor`, which looks for a nearer hit in them
                       // first.
                       if scene.layers.isEmpty {
-                        for row in rows {
-                          for column in tileColumns {
-                            let slot = slot(row, column)
-                            let found = hits[slot]
-                            guard let hit = found.hit else { continue }
-                            (normals.baseAddress! + slot).initialize(
-                              to: normal(
-                                of: hit, ray: rays[slot], scene: scene,
-                                sphereRecord: found.record,
-                                triangleWeights: found.weights))
+                        if shade || wantsNormals {
+                          for row in rows {
+                            for column in tileColumns {
+                              let slot = slot(row, column)
+                              let found = hits[slot]
+                              guard let hit = found.hit else { continue }
+                              (normals.baseAddress! + slot).initialize(
+                                to: normal(
+                                  of: hit, ray: rays[slot], scene: scene,
+                                  sphereRecord: found.record,
+                                  triangleWeights: found.weights))
+                            }
                           }
                         }
-                        for row in rows {
-                          for column in tileColumns {
-                            let slot = slot(row, column)
-                            guard let hit = hits[slot].hit else {
-                              sums[slot] += scene.background
-                              continue
+                        if shade {
+                          for row in rows {
+                            for column in tileColumns {
+                              let slot = slot(row, column)
+                              guard let hit = hits[slot].hit else {
+                                sums[slot].color += scene.background
+                                continue
+                              }
+                              sums[slot].color += self.shade(
+                                hit, ray: rays[slot], normal: normals[slot],
+                                scene: scene, attenuate: attenuate)
                             }
-                            sums[slot] += shade(
-                              hit, ray: rays[slot], normal: normals[slot],
-                              scene: scene, attenuate: attenuate)
+                          }
+                        }
+                        if all {
+                          for row in rows {
+                            for column in tileColumns {
+                              let slot = slot(row, column)
+                              guard let hit = hits[slot].hit else { continue }
+                              sums[slot].add(
+                                Sample(
+                                  depth: hit.t * scene.lengthScale,
+                                  normal: wantsNormals ? normals[slot] : .zero,
+                                  color: .zero), all: true)
+                            }
                           }
                         }
                       } else {
@@ -139,20 +162,22 @@ extension Renderer {
                           for column in tileColumns {
                             let slot = slot(row, column)
                             let found = hits[slot]
-                            sums[slot] += sampleColor(
-                              found.hit, ray: rays[slot], scene: scene,
-                              sphereRecord: found.record,
-                              triangleWeights: found.weights,
-                              attenuate: attenuate)
+                            sums[slot].add(
+                              sample(
+                                found.hit, ray: rays[slot], scene: scene,
+                                sphereRecord: found.record,
+                                triangleWeights: found.weights,
+                                normals: wantsNormals, shade: shade,
+                                attenuate: attenuate), all: all)
                           }
                         }
                       }
                     }
                     for row in rows {
                       for column in tileColumns {
-                        targets.setColor(
-                          sums[slot(row, column)] / S(count),
-                          at: row * settings.width + column)
+                        sums[slot(row, column)].store(
+                          samples: count, at: row * settings.width + column,
+                          in: targets, all: all)
                       }
                     }
                   }

@@ -26,14 +26,17 @@ extension Renderer {
         let triangleEntries = tiles.triangleEntries(
           ofTileAt: start, row: rows.lowerBound)
         let tile = start..<min(start + width, settings.width)
-        if !settings.supersamples || targets.wantsDepth
-          || targets.wantsNormals
+        // The pixel centres for what is not supersampled, then the samples.
+        let all = settings.supersamplesAll
+        if !all
+          && (!settings.supersamples || targets.wantsDepth
+            || targets.wantsNormals)
         {
           renderProjectedTile(
             entries, triangleEntries, columns: tile, rows: rows, columns,
             scene, camera, settings, targets)
         }
-        if settings.supersamples && targets.wantsColor {
+        if all || (settings.supersamples && targets.wantsColor) {
           renderProjectedSamples(
             entries, triangleEntries, columns: tile, rows: rows, scene, camera,
             settings, targets)
@@ -125,6 +128,14 @@ extension Renderer {
     let y: R = settings.screen.y(row: row)
     let rowBase = camera.rowBase(y: y, aspect: aspect)
     let wantsColor = targets.wantsColor
+    if settings.supersamplesAll {
+      for column in tile {
+        supersample(
+          column: column, row: row, by: search, scene: scene, camera: camera,
+          settings: settings, targets: targets)
+      }
+      return
+    }
     // The tile's directions first, in a loop without calls, so that the
     // processor overlaps one pixel's square root and division with the
     // next one's instead of waiting on each behind a traversal. At most
@@ -142,10 +153,9 @@ extension Renderer {
         let ray = CameraRay(origin: scene.rayOrigin, direction: direction)
         let pixel = row * width + column
         if wantsColor && settings.supersamples {
-          targets.setColor(
-            supersampledColor(
-              column: column, row: row, by: search, scene: scene,
-              camera: camera, settings: settings), at: pixel)
+          supersample(
+            column: column, row: row, by: search, scene: scene,
+            camera: camera, settings: settings, targets: targets)
         }
         // No spheres: no sphere search and no sphere memo to carry through
         // the pixel (carried, it cost a triangle scene a sixth of its

@@ -36,19 +36,6 @@ public struct Material<Scalar: RayScalar>: Hashable, Sendable {
     Surface(diffuse: diffuse, specular: specular, shininess: shininess)
   }
 
-  /// The colour seen at a hit: `Surface.shade`.
-  @inlinable
-  @_specialize(where Scalar == Double)
-  public func shade(
-    point: Vector3<Scalar>, normal: Vector3<Scalar>,
-    viewDirection: Vector3<Scalar>, ambient: RGB<Scalar>,
-    lights: [Light<Scalar>], attenuate: Bool
-  ) -> RGB<Scalar> {
-    surface.shade(
-      point: point, normal: normal, viewDirection: viewDirection,
-      ambient: ambient, lights: lights, attenuate: attenuate)
-  }
-
   /// A material's colours and shininess: plain numbers, so that the fast
   /// engine keeps an array of them and copies one per hit for nothing (a
   /// `Material`, holding a string, is copied through reference counting).

@@ -300,14 +300,4 @@ extension Matrix4 {
       m02, m12, m22, m32,
       m03, m13, m23, m33)
   }
-
-  /// The determinant of the upper-left 3×3 (the linear part of an affine
-  /// transform): negative for a mirroring transform, which reverses the
-  /// winding of triangles; zero for a flattening one.
-  @inlinable
-  package var linearDeterminant: Scalar {
-    m00 * (m11 * m22 - m12 * m21)
-      - m01 * (m10 * m22 - m12 * m20)
-      + m02 * (m10 * m21 - m11 * m20)
-  }
 }

@@ -37,6 +37,10 @@ extension RenderSettings {
   @inlinable
   public var supersamples: Bool { samples > 1 }
 
+  /// Whether depth and normals too are the means of a pixel's samples.
+  @inlinable
+  public var supersamplesAll: Bool { supersamples && samplesAllOutputs }
+
   /// How far from a pixel's centre its rays can pass, in pixels beyond
   /// the pixel's own half: 0 for one ray through the centre, the filter's
   /// reach (and a sixteenth for rounding) when supersampled.

@@ -30,8 +30,13 @@ public struct RenderSettings: Sendable {
   /// Worker threads; the image is the same, bit for bit, for any count.
   public var threads: Int
   /// Camera rays per pixel for the shaded image, a perfect square: jittered
-  /// on a √N × √N grid of strata. Depth and normals take the pixel's centre.
+  /// on a √N × √N grid of strata. Depth and normals take the pixel's centre,
+  /// unless `samplesAllOutputs`.
   public var samples: Int = 1
+  /// Depth and normals averaged over the shaded image's samples: the depth
+  /// of the samples that hit (∞ when none does), the normals' mean with a
+  /// miss counted as zero (docs/CONVENTIONS.md, "Supersampling").
+  public var samplesAllOutputs = false
   /// How samples are spread over and weighted around a pixel.
   public var filter: PixelFilter = .box
   /// Outputs (normals, shaded) that are only written as 8-bit images: the

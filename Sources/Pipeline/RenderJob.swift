@@ -45,11 +45,14 @@ package struct RenderReport: Sendable {
   package var firstRenderSeconds: Double = 0
   package var writeSeconds: Double
   /// Camera rays traced: one per pixel, plus `samples` more per pixel for
-  /// supersampled shading.
+  /// supersampled shading; `samples` per pixel when every output is
+  /// supersampled.
   package var rays: Int {
     let perPixel =
-      settings.supersamples && settings.outputs.contains(.shaded)
-      ? settings.samples + 1 : 1
+      settings.supersamplesAll
+      ? settings.samples
+      : settings.supersamples && settings.outputs.contains(.shaded)
+        ? settings.samples + 1 : 1
     return settings.width * settings.height * perPixel
   }
   package var megaraysPerSecond: Double { Double(rays) / renderSeconds / 1e6 }

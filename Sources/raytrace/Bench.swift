@@ -32,7 +32,9 @@ struct Bench: ParsableCommand {
       each workload is also rendered by Mitsuba 3 through the course tools' \
       peer_mitsuba.py (as it is and with --freeze, the better kept; depth \
       and normals at pixel centres, or --spp jittered samples), and its warm \
-      Mrays/s and raytrace's ratio to it are added to the row.
+      Mrays/s and raytrace's ratio to it are added to the row. 'samples' \
+      reads '16, all' where depth and normals are the means of 16 samples \
+      (--sample-all-outputs): the peer's work at --spp 16.
       """)
 
   @Option(help: "Timed runs per workload, after one warm-up.")
@@ -119,7 +121,8 @@ struct Bench: ParsableCommand {
             + "\(objects) | "
             + "\(result.threads) | "
             + "\(workload.outputs.names.joined(separator: " + ")) | "
-            + "\(workload.samples) | "
+            + "\(workload.samples)"
+            + (workload.samplesAllOutputs ? ", all | " : " | ")
             + "\(formatted(result.warmRenderSeconds * 1000, digits: 3)) | "
             + "\(formatted(result.megaraysPerSecond, digits: 3)) | "
             + "\(formatted(result.renderSeconds * 1000, digits: 3)) | "

@@ -120,6 +120,7 @@ extension Render {
       threads: threads ?? Platform.availableCores)
     settings.samples = samples
     settings.filter = filter
+    settings.samplesAllOutputs = sampleAllOutputs
     var request = RenderRequest(
       settings,
       fast: FastOptions(

@@ -145,7 +145,8 @@ struct Render: ParsableCommand {
     help: ArgumentHelp(
       """
         Rays per pixel for the shaded image: 1, 4, 9, 16, ... (a square), \
-        jittered on a grid of strata; depth and normals keep the pixel centre.
+        jittered on a grid of strata; depth and normals keep the pixel \
+        centre unless --sample-all-outputs.
         """,
       valueName: "n"))
   var samples: Int = 1
@@ -159,6 +160,17 @@ struct Render: ParsableCommand {
         """
   )
   var filter: PixelFilter = .box
+
+  @Flag(
+    name: .customLong("sample-all-outputs"),
+    help:
+      """
+        Depth and normals too are the means of the --samples rays of each \
+        pixel: depth over the rays that hit, normals with a miss as zero. \
+        Without a shaded image nothing is shaded.
+        """
+  )
+  var sampleAllOutputs = false
 
   @Flag(
     name: .customLong("jitter", withSingleDash: true),

@@ -49,22 +49,31 @@ struct BothEngines {
   var fast: RenderBuffers<Double>
   var style: ImageStyle
 
-  init(_ scene: Scene, width: Int, height: Int, style: ImageStyle) {
-    let settings = RenderSettings(
+  /// With `samples` > 1, every output is the mean of each pixel's samples
+  /// (`RenderSettings.samplesAllOutputs`).
+  init(
+    _ scene: Scene, width: Int, height: Int, style: ImageStyle,
+    samples: Int = 1
+  ) {
+    var settings = RenderSettings(
       width: width, height: height, outputs: [.depth, .normals, .shaded],
       style: style, threads: 2)
+    settings.samples = samples
+    settings.samplesAllOutputs = true
     course = CourseEngine.render(scene, settings: settings)
     fast = Renderer.render(
       CompiledScene<StableKernel<Double>>(scene), settings: settings)
     self.style = style
   }
 
-  init(contentsOf path: String, width: Int, height: Int, style: ImageStyle)
-    throws
-  {
+  init(
+    contentsOf path: String, width: Int, height: Int, style: ImageStyle,
+    samples: Int = 1
+  ) throws {
     let scene = try SceneReader.read(
       contentsOf: path, options: SceneOptions(style: style))
-    self.init(scene, width: width, height: height, style: style)
+    self.init(
+      scene, width: width, height: height, style: style, samples: samples)
   }
 
   /// The 8-bit images (shaded, normals, depth) of each engine, the depth

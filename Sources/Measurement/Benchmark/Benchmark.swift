@@ -30,6 +30,9 @@ package struct Workload: Sendable {
   package var outputs: RenderOutputs
   /// Rays per pixel of the shaded image (`--samples`).
   package var samples = 1
+  /// Depth and normals the means of the samples too
+  /// (`--sample-all-outputs`): the work of a peer's supersampled AOVs.
+  package var samplesAllOutputs = false
 
   /// The workloads of the README's table: the course-like scene at two
   /// sizes, random spheres from 100 to 10⁶, what leaving outputs out saves,
@@ -78,17 +81,26 @@ package struct Workload: Sendable {
       name: "mesh", source: .randomMesh(1_000), width: 1920, height: 1080,
       outputs: [.shaded], samples: 16),
     Workload(
+      name: "mesh", source: .randomMesh(1_000), width: 1920, height: 1080,
+      outputs: [.depth, .normals], samples: 16, samplesAllOutputs: true),
+    Workload(
       name: "mesh", source: .randomMesh(100_000), width: 1920, height: 1080,
       outputs: [.depth, .normals]),
     Workload(
       name: "mesh", source: .randomMesh(100_000), width: 1920, height: 1080,
       outputs: [.shaded], samples: 16),
     Workload(
+      name: "mesh", source: .randomMesh(100_000), width: 1920, height: 1080,
+      outputs: [.depth, .normals], samples: 16, samplesAllOutputs: true),
+    Workload(
       name: "mesh", source: .randomMesh(1_000_000), width: 1920, height: 1080,
       outputs: [.depth, .normals]),
     Workload(
       name: "mesh", source: .randomMesh(1_000_000), width: 1920, height: 1080,
       outputs: [.shaded], samples: 16),
+    Workload(
+      name: "mesh", source: .randomMesh(1_000_000), width: 1920, height: 1080,
+      outputs: [.depth, .normals], samples: 16, samplesAllOutputs: true),
     Workload(
       name: "mesh", source: .randomMesh(5_000_000), width: 1920, height: 1080,
       outputs: [.depth, .normals]),
@@ -99,16 +111,24 @@ package struct Workload: Sendable {
       name: "bunny_1k", source: .reference("scene06_bunny_1k.txt"),
       width: 800, height: 800, outputs: [.shaded], samples: 16),
     Workload(
+      name: "bunny_1k", source: .reference("scene06_bunny_1k.txt"),
+      width: 800, height: 800, outputs: [.depth, .normals], samples: 16,
+      samplesAllOutputs: true),
+    Workload(
       name: "arch", source: .reference("scene07_arch.txt"), width: 800,
       height: 800, outputs: [.depth, .normals]),
     Workload(
       name: "arch", source: .reference("scene07_arch.txt"), width: 800,
       height: 800, outputs: [.shaded], samples: 16),
+    Workload(
+      name: "arch", source: .reference("scene07_arch.txt"), width: 800,
+      height: 800, outputs: [.depth, .normals], samples: 16,
+      samplesAllOutputs: true),
   ]
 
   package init(
     name: String, source: Source, width: Int, height: Int, threads: Int? = nil,
-    outputs: RenderOutputs, samples: Int = 1
+    outputs: RenderOutputs, samples: Int = 1, samplesAllOutputs: Bool = false
   ) {
     self.name = name
     self.source = source
@@ -117,6 +137,7 @@ package struct Workload: Sendable {
     self.threads = threads
     self.outputs = outputs
     self.samples = samples
+    self.samplesAllOutputs = samplesAllOutputs
   }
 
   /// The generated scenes' object count; nil for a scene file, whose
@@ -239,6 +260,7 @@ package struct Benchmark {
     ]
     if workload.samples > 1 {
       arguments += ["--samples", "\(workload.samples)"]
+      if workload.samplesAllOutputs { arguments += ["--sample-all-outputs"] }
     }
     let outputFolder = dataFolder + "/out"
     mkdir(dataFolder, 0o755)

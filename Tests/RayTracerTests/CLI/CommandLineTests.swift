@@ -475,6 +475,30 @@ final class CommandLineTests: XCTestCase {
     XCTAssertEqual(try read("aa1.pfm"), try read("aa2.pfm"))
   }
 
+  /// `--sample-all-outputs`: depth and normals from the samples (others
+  /// than the centre's), every ray counted once; at one sample a pixel
+  /// the same files as without it.
+  func testRender_SampleAllOutputs() throws {
+    func render(_ name: String, _ extra: [String]) throws -> Outcome {
+      let outcome = try run(
+        [
+          "scenes/spheres.txt", "--size", "32", "24", "--depth",
+          folder + "/\(name).pfm", "--normals", folder + "/\(name)n.pfm",
+          "--stats",
+        ] + extra)
+      XCTAssertEqual(outcome.status, 0, outcome.stderr)
+      return outcome
+    }
+    let all = try render("all", ["--samples", "4", "--sample-all-outputs"])
+    XCTAssertTrue(all.stderr.contains("3072 rays"), all.stderr)
+    _ = try render("centre", ["--samples", "4"])
+    XCTAssertNotEqual(try read("all.pfm"), try read("centre.pfm"))
+    XCTAssertNotEqual(try read("alln.pfm"), try read("centren.pfm"))
+    _ = try render("one", ["--sample-all-outputs"])
+    XCTAssertEqual(try read("one.pfm"), try read("centre.pfm"))
+    XCTAssertEqual(try read("onen.pfm"), try read("centren.pfm"))
+  }
+
   func testUsage_SamplesMustBeASquare() throws {
     let outcome = try run([
       "scenes/spheres.txt", "-o", folder + "/a.png", "--samples", "5",

@@ -140,6 +140,14 @@ final class ScreenTilesTests: XCTestCase {
             kernel, scene, settings,
             "\(Kernel.self) \(style) 4 samples, \(filter)")
         }
+        // Depth and normals the means of the samples, nothing shaded.
+        var all = RenderSettings(
+          width: 19, height: 11, outputs: [.depth, .normals], style: style,
+          threads: 2)
+        all.samples = 4
+        all.samplesAllOutputs = true
+        assertSameImages(
+          kernel, scene, all, "\(Kernel.self) \(style) every output sampled")
       }
     }
   }

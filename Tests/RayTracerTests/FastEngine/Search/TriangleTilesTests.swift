@@ -178,6 +178,13 @@ final class TriangleTilesTests: XCTestCase {
           settings.filter = filter
           cases.append(settings)
         }
+        // Every output the mean of the samples.
+        var all = RenderSettings(
+          width: 19, height: 11, outputs: [.depth, .normals, .shaded],
+          style: style, threads: 2)
+        all.samples = 4
+        all.samplesAllOutputs = true
+        cases.append(all)
         for settings in cases {
           let label =
             "\(Kernel.self) \(style) \(settings.width)×\(settings.height) "

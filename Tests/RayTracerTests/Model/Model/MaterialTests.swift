@@ -57,7 +57,7 @@ final class MaterialTests: XCTestCase {
   func checkAmbientOnly<T: RayScalar>(_: T.Type) {
     let material = Material<T>(
       diffuse: Vector3(0.5, 1, 0.25), specular: Vector3(1, 1, 1), shininess: 8)
-    let color = material.shade(
+    let color = material.surface.shade(
       point: .zero, normal: Vector3(0, 1, 0), viewDirection: Vector3(0, -1, 0),
       ambient: Vector3(0.5, 0.25, 1), lights: [], attenuate: true)
     XCTAssertEqual(color, Vector3(0.25, 0.25, 0.25), "\(T.self)")
@@ -74,7 +74,7 @@ final class MaterialTests: XCTestCase {
       shininess: 30)
     let light = Light<T>.directional(
       direction: Vector3(0, -1, 0), color: Vector3(1, 0.5, 2))
-    let color = material.shade(
+    let color = material.surface.shade(
       point: Vector3(3, 0, 4), normal: Vector3(0, 1, 0),
       viewDirection: Vector3(0, -1, 0),
       ambient: Vector3(0.5, 0.5, 0.5), lights: [light], attenuate: false)
@@ -99,7 +99,7 @@ final class MaterialTests: XCTestCase {
       (Vector3(-0.6, -0.8, 0), 0.28),  // −d·r = −0.36 + 0.64
     ]
     for (view, highlight) in cases {
-      let color = material.shade(
+      let color = material.surface.shade(
         point: .zero, normal: normal, viewDirection: view, ambient: .zero,
         lights: [light], attenuate: false)
       let specular = ReferenceScalar.pow(highlight, 10)
@@ -128,7 +128,7 @@ final class MaterialTests: XCTestCase {
     let tangent = Light<T>.directional(
       direction: Vector3(-1, 0, 0), color: Vector3(1, 1, 1))
     let ambient = Vector3<T>(0.25, 0.5, 0.75)
-    let color = material.shade(
+    let color = material.surface.shade(
       point: .zero, normal: Vector3(0, 0, 1),
       viewDirection: Vector3(0, 0.6, 0.8),
       ambient: ambient, lights: [below, tangent], attenuate: false)
@@ -149,17 +149,17 @@ final class MaterialTests: XCTestCase {
       direction: Vector3(0, -1, 0), color: Vector3(1, 1, 1))
     let normal = Vector3<T>(0, 1, 0)
     // r = (0, 1, 0); d = (0.6, −0.8, 0) gives −d·r = 0.8 > 0.
-    let lit = material.shade(
+    let lit = material.surface.shade(
       point: .zero, normal: normal, viewDirection: Vector3(0.6, -0.8, 0),
       ambient: .zero, lights: [light], attenuate: false)
     XCTAssertEqual(lit, Vector3(0.5, 0.25, 1), "\(T.self)")
     // d = (0, 1, 0) looks away from the reflection: −d·r = −1.
-    let unlit = material.shade(
+    let unlit = material.surface.shade(
       point: .zero, normal: normal, viewDirection: Vector3(0, 1, 0),
       ambient: .zero, lights: [light], attenuate: false)
     XCTAssertEqual(unlit, .zero, "\(T.self)")
     // d = (1, 0, 0) is perpendicular to r: −d·r = 0 exactly.
-    let perpendicular = material.shade(
+    let perpendicular = material.surface.shade(
       point: .zero, normal: normal, viewDirection: Vector3(1, 0, 0),
       ambient: .zero, lights: [light], attenuate: false)
     XCTAssertEqual(perpendicular, .zero, "\(T.self)")
@@ -179,7 +179,7 @@ final class MaterialTests: XCTestCase {
     let withoutFalloff = Light<T>.point(
       position: Vector3(1, 2, 5), color: Vector3(1, 1, 1), falloff: nil)
     func shade(_ light: Light<T>, attenuate: Bool) -> RGB<T> {
-      material.shade(
+      material.surface.shade(
         point: point, normal: normal, viewDirection: Vector3(0, 0, -1),
         ambient: .zero,
         lights: [light], attenuate: attenuate)
@@ -238,7 +238,7 @@ final class MaterialTests: XCTestCase {
         }
       }
       let ambient = color()
-      let got = material.shade(
+      let got = material.surface.shade(
         point: point, normal: normal, viewDirection: view, ambient: ambient,
         lights: lights, attenuate: attenuate)
       let (want, scale) = referenceShade(
