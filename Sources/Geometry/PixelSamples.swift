@@ -10,19 +10,19 @@
 /// The jitter comes from a generator seeded by the pixel's index, so the
 /// image is the same for any thread count and either engine.
 public struct PixelSamples<R: RayScalar>: IteratorProtocol {
-  private let camera: PerspectiveCamera<R>
-  private let filter: PixelFilter
-  private let aspect: R
-  private let centre: (x: R, y: R)
+  @usableFromInline let camera: PerspectiveCamera<R>
+  @usableFromInline let filter: PixelFilter
+  @usableFromInline let aspect: R
+  @usableFromInline let centre: (x: R, y: R)
   /// One pixel in screen units: the distance between adjacent samples of
   /// the image's grid (`RenderSettings.screen`).
-  private let step: (x: R, y: R)
+  @usableFromInline let step: (x: R, y: R)
   /// √samples strata on each axis.
-  let strata: Int
-  private var generator: SplitMix64
-  private var stratum = 0
+  @usableFromInline let strata: Int
+  @usableFromInline var generator: SplitMix64
+  @usableFromInline var stratum = 0
 
-  @inline(__always)
+  @inlinable @inline(__always)
   public init(
     column: Int, row: Int, camera: PerspectiveCamera<R>,
     settings: RenderSettings
@@ -43,16 +43,16 @@ public struct PixelSamples<R: RayScalar>: IteratorProtocol {
   }
 
   /// The number of samples: the largest square ≤ `settings.samples`.
-  public var count: Int { strata * strata }
+  @inlinable public var count: Int { strata * strata }
 
-  @inline(__always)
+  @inlinable @inline(__always)
   public mutating func next() -> Vector3<R>? {
     nextThroughScreen()?.normalizedByReciprocal()
   }
 
   /// The next sample's direction before it is normalised: `next()` is it
   /// normalised by reciprocal (`PerspectiveCamera.throughScreen`).
-  @inline(__always)
+  @inlinable @inline(__always)
   public mutating func nextThroughScreen() -> Vector3<R>? {
     guard stratum < count else { return nil }
     let (stratumY, stratumX) = stratum.quotientAndRemainder(dividingBy: strata)
