@@ -26,15 +26,14 @@ struct TriangleSources: Sendable {
   private var normalBases: [Int] = []
   /// The faces' count so far: the next mesh's first face number.
   private var faces = 0
-  /// Per compiled triangle, its face number; empty while triangle k is
-  /// face k for every k so far.
+  /// Per compiled triangle, its face number; empty while `followsFaces`.
   private var numbers: [Int32] = []
   /// Compiled triangles so far.
   private(set) var count = 0
 
   /// Whether compiled triangle k is face k for every k: no face numbers
   /// are stored.
-  var followsFaces: Bool { numbers.isEmpty }
+  private(set) var followsFaces = true
 
   /// Adds `mesh`, whose faces follow the earlier meshes' in numbering,
   /// its normals at `normalBase` in the compiled normals.
@@ -53,26 +52,28 @@ struct TriangleSources: Sendable {
 
   /// Appends a compiled triangle made from face `face`.
   mutating func append(face: Int) {
-    if numbers.isEmpty && face != count {
-      numbers = (0..<count).map { Int32(truncatingIfNeeded: $0) }
-    }
-    if !numbers.isEmpty { numbers.append(Int32(truncatingIfNeeded: face)) }
+    if followsFaces && face != count { storeNumbers() }
+    if !followsFaces { numbers.append(Int32(truncatingIfNeeded: face)) }
     count += 1
+  }
+
+  /// Stores the face numbers so far, k for triangle k.
+  private mutating func storeNumbers() {
+    numbers = (0..<count).map { Int32(truncatingIfNeeded: $0) }
+    followsFaces = false
   }
 
   /// Puts the triangles into the hierarchy's leaf order (`arrange`).
   mutating func arrange(_ hierarchy: BoundingVolumeHierarchy<some RayScalar>)
   {
-    if numbers.isEmpty {
-      numbers = (0..<count).map { Int32(truncatingIfNeeded: $0) }
-    }
+    if followsFaces { storeNumbers() }
     hierarchy.arrange(&numbers)
   }
 
   /// Compiled triangle `index`'s mesh and its face's index in that mesh.
   @inline(__always)
   private func locate(_ index: Int) -> (mesh: Int, face: Int) {
-    let face = numbers.isEmpty ? index : Int(numbers[index])
+    let face = followsFaces ? index : Int(numbers[index])
     // The last mesh starting at or before the face: one compare for a
     // scene of one mesh.
     var (low, high) = (0, firsts.count - 1)
