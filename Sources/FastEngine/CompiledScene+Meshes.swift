@@ -21,14 +21,13 @@ extension CompiledScene {
     // On ordinary pages: 2 MiB pages cost more to fault in once memory is
     // fragmented (docs/PERFORMANCE.md, "Large meshes").
     triangles.reserveCapacity(list.count)
-    triangleMaterials.reserveCapacity(list.count)
-    triangleNormalIndices.reserveCapacity(list.count)
     var large: [LargeTriangle] = []
     for mesh in list.parts {
       let framed = Self.map(mesh.vertices) {
         Self.frame($0, eye: eye, cameraRelative: cameraRelative)
       }
       let normalBase = vertexNormals.count
+      triangleSources.add(mesh, normalBase: normalBase)
       if mesh.normalsFollowVertices || !mesh.normalIndices.isEmpty {
         if vertexNormals.isEmpty, Scalar.self == Double.self {
           // A Double render's normals are the model's: shared, not copied
@@ -40,21 +39,13 @@ extension CompiledScene {
           vertexNormals += mesh.normals.map { Vector3<Scalar>($0) }
         }
       }
-      func normalIndex(_ index: Int) -> Int32 {
-        Int32(truncatingIfNeeded: normalBase + index)
-      }
       for index in mesh.indices {
         let (a, b, c) = mesh.corners(index)
         let record = TriangleRecord(v0: framed[a], v1: framed[b], v2: framed[c])
         // A degenerate triangle is never hit: leaving it out changes nothing.
         guard let normal = record.geometricNormal else { continue }
         let shading = TriangleShading<Scalar>(
-          material: Int32(truncatingIfNeeded: mesh.material(at: index)),
-          normals: mesh.normalCorners(index).map {
-            TriangleNormalIndices(
-              n0: normalIndex($0.0), n1: normalIndex($0.1),
-              n2: normalIndex($0.2))
-          } ?? .none,
+          face: triangleSources.face(index),
           textureCoordinates: textures.isEmpty
             ? nil
             : mesh.textureCorners(index).map {

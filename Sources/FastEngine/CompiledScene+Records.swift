@@ -5,7 +5,7 @@ import PlatformSupport
 
 /// A triangle as the loop tests it: vertices in the kernel's frame. Its
 /// shading (material, vertex normals, texture coordinates) is kept beside
-/// the records (`CompiledScene.triangleNormalIndices`), read once per
+/// the records (`CompiledScene.triangleSources`), read once per
 /// pixel rather than carried through every test.
 struct TriangleRecord<Scalar: RayScalar>: Sendable {
   var v0: Vector3<Scalar>
@@ -175,8 +175,9 @@ struct TriangleNormalIndices: Sendable {
 
 /// What shading reads of a compiled triangle besides its record.
 struct TriangleShading<Scalar: RayScalar>: Sendable {
-  var material: Int32
-  var normals: TriangleNormalIndices
+  /// The face it was compiled from (`TriangleSources`): its material and
+  /// normals.
+  var face: Int
   /// Only for textured renders.
   var textureCoordinates: Triangle<Scalar>.TextureCoordinates?
 }
@@ -188,8 +189,7 @@ extension CompiledScene {
     _ record: TriangleRecord<Scalar>, _ shading: TriangleShading<Scalar>
   ) {
     triangles.append(record)
-    triangleMaterials.append(shading.material)
-    triangleNormalIndices.append(shading.normals)
+    triangleSources.append(face: shading.face)
     if !textures.isEmpty {
       triangleTextureCoordinates.append(shading.textureCoordinates)
     }
@@ -198,7 +198,7 @@ extension CompiledScene {
   /// The vertex normals of compiled triangle `index`, or nil.
   @inline(__always)
   func vertexNormals(ofTriangle index: Int) -> Triangle<Scalar>.VertexNormals? {
-    let normals = triangleNormalIndices[index]
+    let normals = triangleSources.normals(index)
     guard normals.n0 >= 0 else { return nil }
     return Triangle.VertexNormals(
       vertexNormals[Int(normals.n0)], vertexNormals[Int(normals.n1)],

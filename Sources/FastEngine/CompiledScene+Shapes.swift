@@ -20,7 +20,9 @@ extension CompiledScene {
     boundedShapeCount = bounded.count
     guard bounded.count >= 2 else { return }
     let bvh = shapeBoxes.withUnsafeBufferPointer { boxes in
-      BoundingVolumeHierarchy<Double>(count: bounded.count) {
+      BoundingVolumeHierarchy<Double>(
+        count: bounded.count, threads: threads
+      ) {
         let box = boxes[$0]!
         return (box.lower, box.upper)
       }

@@ -19,7 +19,9 @@ extension CompiledScene {
   /// screen.
   mutating func buildTriangleHierarchy() {
     let bvh = triangles.withUnsafeBufferPointer { records in
-      BoundingVolumeHierarchy<Scalar>(count: ordinaryTriangleCount) {
+      BoundingVolumeHierarchy<Scalar>(
+        count: ordinaryTriangleCount, threads: threads
+      ) {
         let record = records[$0]
         let lower = Vector3(
           Swift.min(record.v0.x, record.v1.x, record.v2.x),
@@ -35,8 +37,7 @@ extension CompiledScene {
       }
     }
     bvh.arrange(&triangles)
-    bvh.arrange(&triangleMaterials)
-    bvh.arrange(&triangleNormalIndices)
+    triangleSources.arrange(bvh)
     if !exactPlaneIndices.isEmpty { bvh.arrange(&exactPlaneIndices) }
     if !triangleTextureCoordinates.isEmpty {
       bvh.arrange(&triangleTextureCoordinates)

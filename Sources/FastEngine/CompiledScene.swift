@@ -38,9 +38,9 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   private(set) var projectsSpheres = false
   /// Triangles in the kernel's frame, in hierarchy order when there is one.
   var triangles: [TriangleRecord<Scalar>] = []
-  var triangleMaterials: [Int32] = []
-  /// Per triangle, where its vertex normals are in `vertexNormals`.
-  var triangleNormalIndices: [TriangleNormalIndices] = []
+  /// Per triangle, the face it was compiled from: its material, and where
+  /// its vertex normals are in `vertexNormals`.
+  var triangleSources = TriangleSources()
   /// The meshes' normals in the render's precision, shared by their
   /// triangles as in the model.
   var vertexNormals: [Vector3<Scalar>] = []
@@ -92,6 +92,9 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   package let lights: [Light<Scalar>]
   package let ambient: RGB<Scalar>
   package let background: RGB<Scalar>
+  /// Threads that build the hierarchies, now or when the render asks
+  /// (`buildTriangleHierarchy`): the same hierarchy for any count.
+  let threads: Int
 
   package var sphereCount: Int { spheres.count }
   package var planeCount: Int { planes.count }
@@ -113,11 +116,13 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   ///   - textures: per material, the texture a shaded render maps onto
   ///     triangles with texture coordinates (see `TextureLoader`); empty
   ///     for untextured scenes and for renders without a shaded image.
+  ///   - threads: the render's, for building hierarchies.
   package init(
     _ scene: Scene, kernel: Kernel.Type = Kernel.self,
     textures: [Texture?] = [],
     hierarchyThreshold: Int = BoundingVolumeHierarchy<Scalar>.defaultThreshold,
-    projectionThreshold: Int = .max, triangleProjectionThreshold: Int = .max
+    projectionThreshold: Int = .max, triangleProjectionThreshold: Int = .max,
+    threads: Int = Platform.availableCores
   ) {
     // Lengths scaled by 2^−k when the scene is beyond the precision's
     // comfortable range (`LengthScale`); k = 0, nothing scaled, otherwise.
@@ -129,12 +134,13 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       scene, split.main, exponent: split.exponent, textures: textures,
       hierarchyThreshold: hierarchyThreshold,
       projectionThreshold: projectionThreshold,
-      triangleProjectionThreshold: triangleProjectionThreshold)
+      triangleProjectionThreshold: triangleProjectionThreshold,
+      threads: threads)
     layers = split.others.map {
       CompiledScene(
         scene, $0.primitives, exponent: $0.exponent, textures: textures,
         hierarchyThreshold: hierarchyThreshold, projectionThreshold: .max,
-        triangleProjectionThreshold: .max)
+        triangleProjectionThreshold: .max, threads: threads)
     }
   }
 
@@ -142,8 +148,9 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   private init(
     _ scene: Scene, _ unscaled: consuming Primitives<Double>, exponent: Int,
     textures: [Texture?], hierarchyThreshold: Int, projectionThreshold: Int,
-    triangleProjectionThreshold: Int
+    triangleProjectionThreshold: Int, threads: Int
   ) {
+    self.threads = threads
     camera = PerspectiveCamera(scene.camera)
     eye = Vector3(scene.camera.center)
     shapeEye = scene.camera.center
@@ -194,7 +201,8 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// declines a scene whose spheres overlap too much on screen.
   mutating func buildSphereHierarchy() {
     let bvh = BoundingVolumeHierarchy(
-      spheres: spheres, kernel: Kernel.self, rayOrigin: rayOrigin)
+      spheres: spheres, kernel: Kernel.self, rayOrigin: rayOrigin,
+      threads: threads)
     let (unordered, unorderedMaterials) = (spheres, sphereMaterials)
     spheres = Self.map(bvh.order) { unordered[Int($0)] }
     sphereMaterials = Self.map(bvh.order) { unorderedMaterials[Int($0)] }
@@ -317,7 +325,7 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     switch what {
     case .sphere(let sphere): index = sphereMaterials[sphere]
     case .plane(let plane): index = planeMaterials[plane]
-    case .triangle(let triangle): index = triangleMaterials[triangle]
+    case .triangle(let triangle): index = triangleSources.material(triangle)
     case .ellipsoid(let ellipsoid): index = ellipsoidMaterials[ellipsoid]
     case .shape(let shape):
       return ray.flatMap { shapeHit(shape, $0)?.materialIndex } ?? 0

@@ -1,6 +1,7 @@
 import Geometry
 import Numerics
 import SceneDescription
+import PlatformSupport
 
 /// The fast engine behind one type that is not generic: a scene compiled
 /// for the options' precision and method, and its renders. The other
@@ -25,13 +26,16 @@ package struct FastScene: Sendable {
   ///   (`FastOptions`' or the measured defaults, `supersampled` widening
   ///   the projection's), `.compiled` for `CompiledScene`'s own defaults
   ///   (what the report and the tests measure).
+  /// - Parameter threads: the render's, for building hierarchies (the same
+  ///   for any count).
   package init(
     _ scene: Scene, textures: [Texture?] = [], options: FastOptions,
-    thresholds: Thresholds = .compiled
+    thresholds: Thresholds = .compiled,
+    threads: Int = Platform.availableCores
   ) {
     self = options.withKernel(
       Compile(scene: scene, textures: textures, options: options,
-        thresholds: thresholds))
+        thresholds: thresholds, threads: threads))
   }
 
   /// Where the compiled scene's search thresholds come from.
@@ -77,11 +81,14 @@ package struct FastScene: Sendable {
     var textures: [Texture?]
     var options: FastOptions
     var thresholds: Thresholds
+    var threads: Int
 
     func run<Kernel: IntersectionKernel>(_: Kernel.Type) -> FastScene {
       switch thresholds {
       case .compiled:
-        return FastScene(CompiledScene<Kernel>(scene, textures: textures))
+        return FastScene(
+          CompiledScene<Kernel>(
+            scene, textures: textures, threads: threads))
       case .render(let supersampled):
         // Spheres are culled per tile below the projection threshold and
         // projected above it, a hierarchy built only where the projection
@@ -96,7 +103,8 @@ package struct FastScene: Sendable {
                 ? CompiledScene<Kernel>.supersampledProjectionThreshold
                 : CompiledScene<Kernel>.projectionThreshold),
             triangleProjectionThreshold: options.triangleProjectionThreshold
-              ?? CompiledScene<Kernel>.triangleProjectionThreshold))
+              ?? CompiledScene<Kernel>.triangleProjectionThreshold,
+            threads: threads))
       }
     }
   }

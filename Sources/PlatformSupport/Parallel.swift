@@ -21,6 +21,19 @@ package enum Parallel {
   }
 }
 
+extension Parallel {
+  /// How many parts to split `count` items into for `threads` threads: one
+  /// per thread, each of at least `minimum` items, and one below `from`
+  /// items (small inputs stay on one thread, which no wake-up of another
+  /// repays).
+  package static func parts(
+    _ count: Int, threads: Int, from: Int, minimum: Int
+  ) -> Int {
+    guard count >= from, threads > 1 else { return 1 }
+    return Swift.max(1, Swift.min(threads, count / Swift.max(1, minimum)))
+  }
+}
+
 /// Pointers and closures shared by worker threads, which work on disjoint
 /// parts of what they point to.
 package struct Shared<Value>: @unchecked Sendable {

@@ -35,22 +35,25 @@ extension BoundingVolumeHierarchy {
       Node(lower: .zero, upper: .zero, index: 0, count: 0)
     }
 
+    /// Builds over `primitives` in `parts` parts (`parts(_:concurrentFrom:
+    /// threads:)`): the root's bins in that many, the root's two subtrees
+    /// on two threads, where there are several.
     mutating func build(
       _ primitives: UnsafeMutableBufferPointer<Primitive>, summary: Summary,
-      concurrentFrom: Int
+      parts: Int
     ) {
       guard !primitives.isEmpty else { return }
       nodes.reserveCapacity(2 * primitives.count - 1)
       nodes.append(Self.placeholder)
       var root = Task(
         node: 0, range: primitives.indices, summary: summary, depth: 0)
-      guard primitives.count >= concurrentFrom else {
+      guard parts > 1 else {
         grow(primitives, from: root)
         return
       }
       // The root's bins and the root here, then each child's subtree on its
       // own thread into its own array, its root at 0.
-      root.binned = binInParts(primitives, summary)
+      root.binned = binInParts(primitives, summary, parts: parts)
       guard let (left, right) = place(primitives, root) else { return }
       let shared = Shared(primitives)
       var halves = [Builder(), Builder()]
@@ -69,23 +72,25 @@ extension BoundingVolumeHierarchy {
       splice(halves[0], halves[1], at: left.node)
     }
 
-    /// Fills `bins` for the root as `bestBinnedSplit` would, each half of
-    /// the primitives on its own thread; the halves' bins are merged in
-    /// order (a minimum keeps the first of equal values and a maximum the
-    /// last, as one pass does), so they are the bins one pass gives.
-    /// False when the root is not binned.
+    /// Fills `bins` for the root as `bestBinnedSplit` would, each of
+    /// `parts` consecutive parts of the primitives on its own thread; the
+    /// parts' bins are merged in order (a minimum keeps the first of equal
+    /// values and a maximum the last, as one pass does), so they are the
+    /// bins one pass gives, whatever the parts. False when the root is not
+    /// binned.
     mutating func binInParts(
-      _ primitives: UnsafeMutableBufferPointer<Primitive>, _ summary: Summary
+      _ primitives: UnsafeMutableBufferPointer<Primitive>, _ summary: Summary,
+      parts partCount: Int
     ) -> Bool {
       guard primitives.count > 1,
         BoundingVolumeHierarchy.forcedMedianDepth > 0,
         let binning = Binning(summary.centroids, primitives: primitives.count)
       else { return false }
       let empty = [Bin](repeating: Bin(), count: binning.count)
-      var parts = [empty, empty]
+      var parts = [[Bin]](repeating: empty, count: partCount)
       parts.withUnsafeMutableBufferPointer { parts in
         let shared = Shared((primitives, parts))
-        Parallel.inParts(primitives.count, 2) { part, range in
+        Parallel.inParts(primitives.count, partCount) { part, range in
           let (primitives, parts) = shared.value
           parts[part].withUnsafeMutableBufferPointer { bins in
             Self.fill(bins, primitives, range, binning)

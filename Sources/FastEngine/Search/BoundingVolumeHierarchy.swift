@@ -111,10 +111,12 @@ extension BoundingVolumeHierarchy {
   /// The hierarchy over `spheres` as the kernel stores them, for rays from
   /// `rayOrigin` in the kernel's frame (`Kernel.frameOrigin(eye:)`).
   ///
-  /// - Parameter concurrentFrom: see `init(boxes:concurrentFrom:)`.
+  /// - Parameters concurrentFrom, threads: see
+  ///   `init(boxes:concurrentFrom:threads:)`.
   init<Kernel: IntersectionKernel>(
     spheres: [Kernel.SphereRecord], kernel: Kernel.Type,
-    rayOrigin: Vector3<Scalar>, concurrentFrom: Int = 1 << 16
+    rayOrigin: Vector3<Scalar>, concurrentFrom: Int = 1 << 16,
+    threads: Int = 2
   ) where Kernel.Scalar == Scalar {
     // A protocol requirement would be the natural home for this, but the
     // model is a property of the two kernels this module defines; anything
@@ -122,13 +124,16 @@ extension BoundingVolumeHierarchy {
     let model: ErrorModel =
       Kernel.self == StableKernel<Scalar>.self ? .cancellationFree : .textbook
     var (primitives, summary) = spheres.withUnsafeBufferPointer { records in
-      Self.primitives(count: records.count, concurrentFrom: concurrentFrom) {
+      Self.primitives(
+        count: records.count, concurrentFrom: concurrentFrom, threads: threads
+      ) {
         let (center, radius) = Kernel.centerAndRadius(records[$0])
         return Self.box(
           center: center, radius: radius, rayOrigin: rayOrigin, model: model)
       }
     }
-    self.init(&primitives, summary, concurrentFrom: concurrentFrom)
+    self.init(
+      &primitives, summary, concurrentFrom: concurrentFrom, threads: threads)
   }
 
   /// A box holding every point at which a kernel of `model` can report a
@@ -205,44 +210,54 @@ extension BoundingVolumeHierarchy {
 
   /// Builds over boxes given in the original order.
   ///
-  /// - Parameter concurrentFrom: from this many boxes the work is shared
-  ///   by two threads: the primitives and their bounds, the root's bins,
-  ///   then the root's two subtrees. The result is the same either way:
-  ///   the bounds of the two halves are merged in order (a minimum keeps
-  ///   the first of equal values and a maximum the last, as one pass
-  ///   would), each subtree is built as the sequential build would build
-  ///   it, and the subtrees are spliced into the same depth-first layout.
+  /// - Parameters:
+  ///   - concurrentFrom: from this many boxes the work is shared by up to
+  ///     `threads` threads: the primitives and their bounds and the root's
+  ///     bins in one part per thread, each of at least half this many
+  ///     boxes, then the root's two subtrees on two threads. The result is
+  ///     the same for any count: the parts' bounds and bins are merged in
+  ///     order (a minimum keeps the first of equal values and a maximum
+  ///     the last, as one pass would), each subtree is built as the
+  ///     sequential build would build it, and the subtrees are spliced
+  ///     into the same depth-first layout.
+  ///   - threads: the render's; 1 builds on the calling thread alone.
   init(
     boxes: [(lower: Vector3<Scalar>, upper: Vector3<Scalar>)],
-    concurrentFrom: Int = 1 << 16
+    concurrentFrom: Int = 1 << 16, threads: Int = 2
   ) {
     self = boxes.withUnsafeBufferPointer { boxes in
-      Self(count: boxes.count, concurrentFrom: concurrentFrom) { boxes[$0] }
+      Self(
+        count: boxes.count, concurrentFrom: concurrentFrom, threads: threads
+      ) { boxes[$0] }
     }
   }
 
   /// Builds over `count` boxes given by `box` in the original order, as
-  /// `init(boxes:concurrentFrom:)` does, without an array of them: `box`
-  /// is called once per index, from two threads from `concurrentFrom`
-  /// boxes on, so it must be safe to call concurrently.
+  /// `init(boxes:concurrentFrom:threads:)` does, without an array of them:
+  /// `box` is called once per index, from up to `threads` threads from
+  /// `concurrentFrom` boxes on, so it must be safe to call concurrently.
   init(
-    count: Int, concurrentFrom: Int = 1 << 16,
+    count: Int, concurrentFrom: Int = 1 << 16, threads: Int = 2,
     box: (Int) -> (lower: Vector3<Scalar>, upper: Vector3<Scalar>)
   ) {
     var (primitives, summary) = Self.primitives(
-      count: count, concurrentFrom: concurrentFrom, box: box)
-    self.init(&primitives, summary, concurrentFrom: concurrentFrom)
+      count: count, concurrentFrom: concurrentFrom, threads: threads, box: box)
+    self.init(
+      &primitives, summary, concurrentFrom: concurrentFrom, threads: threads)
   }
 
   /// Partitions `primitives` in place: an array passed by value was
   /// copied, 80 MB for 10⁶ spheres.
   private init(
-    _ primitives: inout [Primitive], _ summary: Summary, concurrentFrom: Int
+    _ primitives: inout [Primitive], _ summary: Summary, concurrentFrom: Int,
+    threads: Int
   ) {
     var builder = Builder()
     primitives.withUnsafeMutableBufferPointer { primitives in
       builder.build(
-        primitives, summary: summary, concurrentFrom: concurrentFrom)
+        primitives, summary: summary,
+        parts: Self.parts(
+          primitives.count, concurrentFrom: concurrentFrom, threads: threads))
     }
     nodes = builder.nodes
     order = primitives.map(\.index)
@@ -255,10 +270,11 @@ extension BoundingVolumeHierarchy {
   /// in one pass: a separate array of boxes and a pass for the root's
   /// bounds cost a tenth of the build of 10⁶ spheres.
   static func primitives(
-    count: Int, concurrentFrom: Int,
+    count: Int, concurrentFrom: Int, threads: Int,
     box: (Int) -> (lower: Vector3<Scalar>, upper: Vector3<Scalar>)
   ) -> (primitives: [Primitive], summary: Summary) {
-    let parts = count >= concurrentFrom ? 2 : 1
+    let parts = Self.parts(
+      count, concurrentFrom: concurrentFrom, threads: threads)
     var summaries = [Summary](repeating: Summary(), count: parts)
     let primitives = [Primitive](unsafeUninitializedCapacity: count) {
       buffer, initialized in
@@ -286,4 +302,11 @@ extension BoundingVolumeHierarchy {
     return (primitives, summary)
   }
 
+  /// The parts a build of `count` primitives shares out: one per thread,
+  /// each of at least half `concurrentFrom`, and one below it.
+  static func parts(_ count: Int, concurrentFrom: Int, threads: Int) -> Int {
+    Parallel.parts(
+      count, threads: threads, from: concurrentFrom,
+      minimum: concurrentFrom / 2)
+  }
 }

@@ -17,24 +17,42 @@ package enum PFMEncoder {
   package static func encode<S: RayScalar>(converting image: RawImage<S>)
     -> [UInt8]
   {
-    precondition(image.channels == 1 || image.channels == 3)
-    let magic = image.channels == 1 ? "Pf" : "PF"
-    let header = Array("\(magic)\n\(image.width) \(image.height)\n-1.0\n".utf8)
-    let rowLength = image.width * image.channels
-    let count = header.count + 4 * image.values.count
+    image.values.withUnsafeBufferPointer {
+      encode(
+        width: image.width, height: image.height, channels: image.channels,
+        values: $0)
+    }
+  }
+
+  /// The file of an image given as `values`, `channels` per pixel, row 0
+  /// at the top, each rounded to Float once as it is written: for a
+  /// render's normals read in place (`OutputEncoding`), where a flat copy
+  /// of them in Double had been 47 MiB of a 1920×1080 render's peak.
+  /// Specialised: called from another module, its generic form converted
+  /// each value through the type's witnesses, a second for a 1920×1080
+  /// render's depth and normals.
+  @_specialize(where S == Float)
+  @_specialize(where S == Double)
+  package static func encode<S: RayScalar>(
+    width: Int, height: Int, channels: Int, values: UnsafeBufferPointer<S>
+  ) -> [UInt8] {
+    precondition(channels == 1 || channels == 3)
+    precondition(values.count == width * height * channels)
+    let magic = channels == 1 ? "Pf" : "PF"
+    let header = Array("\(magic)\n\(width) \(height)\n-1.0\n".utf8)
+    let rowLength = width * channels
+    let count = header.count + 4 * values.count
     return [UInt8](unsafeUninitializedCapacity: count) { bytes, initialized in
       let raw = UnsafeMutableRawBufferPointer(bytes)
       raw.copyBytes(from: header)
       var offset = header.count
-      image.values.withUnsafeBufferPointer { values in
-        for row in stride(from: image.height - 1, through: 0, by: -1) {
-          let start = row * rowLength
-          for value in values[start..<(start + rowLength)] {
-            raw.storeBytes(
-              of: Float(value).bitPattern.littleEndian, toByteOffset: offset,
-              as: UInt32.self)
-            offset += 4
-          }
+      for row in stride(from: height - 1, through: 0, by: -1) {
+        let start = row * rowLength
+        for value in values[start..<(start + rowLength)] {
+          raw.storeBytes(
+            of: Float(value).bitPattern.littleEndian, toByteOffset: offset,
+            as: UInt32.self)
+          offset += 4
         }
       }
       initialized = count

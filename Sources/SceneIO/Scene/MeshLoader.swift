@@ -43,12 +43,12 @@ enum MeshLoader {
   /// `load`, from `cache` when the same file was read the same way.
   static func load(
     _ path: String, materialIndex: Int, textured: Bool, normals: MeshNormals,
-    precision: Precision = .double, cache: Cache
+    precision: Precision = .double, threads: Int, cache: Cache
   ) throws(Failure) -> Loaded {
     guard let file = FileIdentity.key(path) else {
       return try load(
         path, materialIndex: materialIndex, textured: textured,
-        normals: normals, precision: precision)
+        normals: normals, precision: precision, threads: threads)
     }
     let key = Cache.Key(
       file: file, textured: textured, normals: normals, precision: precision)
@@ -60,21 +60,24 @@ enum MeshLoader {
     }
     let loaded = try load(
       path, materialIndex: materialIndex, textured: textured,
-      normals: normals, precision: precision)
+      normals: normals, precision: precision, threads: threads)
     cache.loaded.withLock { $0[key] = loaded }
     return loaded
   }
 
+  /// The mesh of the OBJ file at `path`, read and parsed by up to
+  /// `threads` threads (the same mesh for any count).
   static func load(
     _ path: String, materialIndex: Int, textured: Bool, normals: MeshNormals,
-    precision: Precision = .double
+    precision: Precision = .double, threads: Int
   ) throws(Failure) -> Loaded {
     if let problem = MemoryNeed.problem(reading: path, perByte: 6) {
       throw .atReference(problem)
     }
     var mesh: OBJMesh
     do {
-      mesh = try OBJReader.read(contentsOf: path, precision: precision)
+      mesh = try OBJReader.read(
+        contentsOf: path, precision: precision, threads: threads)
     } catch {
       guard error.line == 0 else { throw .inFile(error) }
       throw .atReference(

@@ -108,8 +108,8 @@ package struct OBJMesh: Sendable {
   }
 
   /// Appends `other`'s elements after this mesh's, and its faces, whose
-  /// indices already count this mesh's elements (the second half of a
-  /// file, `OBJReader.parseInHalves`).
+  /// indices already count this mesh's elements (a later part of a
+  /// file, `OBJReader.parseInParts`).
   mutating func append(contentsOf other: OBJMesh) {
     let (previous, added) = (vertexIndices.count, other.vertexIndices.count)
     vertices += other.vertices
@@ -127,6 +127,14 @@ package struct OBJMesh: Sendable {
     }
     merge(&normalIndices, other.normalIndices)
     merge(&textureIndices, other.textureIndices)
+  }
+
+  /// Room for `count` vertex index entries, and as many of each other
+  /// kind the mesh has.
+  mutating func reserveIndices(_ count: Int) {
+    vertexIndices.reserveCapacity(count)
+    if !normalIndices.isEmpty { normalIndices.reserveCapacity(count) }
+    if !textureIndices.isEmpty { textureIndices.reserveCapacity(count) }
   }
 
   /// Drops the index entries past `counts` (vertex, normal, texture).

@@ -183,7 +183,7 @@ extension OBJParser {
     if speculative && form == .vertexTexture
       && mesh.textureCoordinates.isEmpty
     {
-      // Texture or normal, by what the first half defines.
+      // Texture or normal, by what the parts before define.
       throw malformedFaceVertex(token)
     }
     if form == .vertexTexture && mesh.textureCoordinates.isEmpty
@@ -220,7 +220,7 @@ extension OBJParser {
           + "'\(quote(partToken))'")
     }
     if speculative {
-      // A negative index counts back from what the first half defines.
+      // A negative index counts back from what the parts before define.
       guard written > 0 else { throw malformedFaceVertex(token) }
       let before = written - count
       switch element {

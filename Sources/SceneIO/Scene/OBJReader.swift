@@ -48,18 +48,23 @@ package enum OBJReader {
   /// Reads and parses the file at `path`; `path` names the file in
   /// messages. A file that cannot be read is an error with line 0. Every
   /// number must be held by `precision` (see `Precision.rangeProblem`).
+  /// A large file is read and parsed by up to `threads` threads, one part
+  /// each (`parseInParts`): the mesh, or the error, is the same for any
+  /// count.
   package static func read(
-    contentsOf path: String, precision: Precision = .double
+    contentsOf path: String, precision: Precision = .double, threads: Int = 1
   ) throws(SceneError) -> OBJMesh {
-    let bytes: [UInt8]
+    let bytes: SceneBytes
     do {
-      bytes = try readFile(path)
+      bytes = try SceneBytes.contentsOf(path, threads: threads)
     } catch {
       throw SceneError(file: path, line: 0, column: 0, message: error.reason)
     }
+    let parts = Parallel.parts(
+      bytes.buffer.count, threads: threads, from: splitThreshold,
+      minimum: splitThreshold / 2)
     return try parse(
-      bytes: bytes, file: path, precision: precision,
-      splitFrom: splitThreshold)
+      bytes.buffer, file: path, precision: precision, parts: parts)
   }
 
   /// Parses `text`; `file` names it in messages.
@@ -69,23 +74,31 @@ package enum OBJReader {
     try parse(bytes: Array(text.utf8), file: file, precision: precision)
   }
 
-  /// Parses raw bytes, which need not be valid UTF-8; on two threads
-  /// (`parseInHalves`) from `splitFrom` bytes, given as `.max` for one
-  /// thread always and as less for tests, which split small files.
+  /// Parses raw bytes, which need not be valid UTF-8, in `parts` parts
+  /// however small (`parseInParts`; tests split small files).
   static func parse(
     bytes: [UInt8], file: String, precision: Precision = .double,
-    splitFrom: Int = .max
+    parts: Int = 1
   ) throws(SceneError) -> OBJMesh {
     try bytes.withUnsafeBufferPointer { (buffer) throws(SceneError) in
-      if buffer.count >= splitFrom,
-        let mesh = try parseInHalves(
-          buffer, file: file, precision: precision)
-      {
-        return mesh
-      }
-      var parser = OBJParser(bytes: buffer, file: file, precision: precision)
-      return try parser.parse()
+      try parse(buffer, file: file, precision: precision, parts: parts)
     }
+  }
+
+  /// Parses `bytes` in `parts` parts, each on its own thread, or on one
+  /// thread where there is one part or no line to split at.
+  static func parse(
+    _ bytes: UnsafeBufferPointer<UInt8>, file: String, precision: Precision,
+    parts: Int
+  ) throws(SceneError) -> OBJMesh {
+    if parts > 1,
+      let mesh = try parseInParts(
+        bytes, file: file, precision: precision, parts: parts)
+    {
+      return mesh
+    }
+    var parser = OBJParser(bytes: bytes, file: file, precision: precision)
+    return try parser.parse()
   }
 }
 
@@ -103,12 +116,12 @@ struct OBJParser {
   /// Where the last token read ended, for "found end of line" messages.
   var lastEnd = (line: 1, column: 1)
   var mesh = OBJMesh()
-  /// Set for the second half of a file read on two threads
-  /// (`OBJReader.parseInHalves`), which does not know what the first half
-  /// defines: an index past the elements read so far is recorded in
-  /// `needed` rather than refused, and anything whose reading depends on
-  /// the first half (a negative index, `a/b` before any `vt` line) is an
-  /// error that stops the half there.
+  /// Set for a later part of a file read in parts
+  /// (`OBJReader.parseInParts`), which does not know what the parts
+  /// before it define: an index past the elements read so far is
+  /// recorded in `needed` rather than refused, and anything whose reading
+  /// depends on the parts before (a negative index, `a/b` before any `vt`
+  /// line) is an error that stops the part there.
   var speculative = false
   /// In a speculative half, per kind of element, how many must come before
   /// it for every index read to be valid.

@@ -223,7 +223,7 @@ extension PlistSceneBuilder {
       loaded = try MeshLoader.load(
         file, materialIndex: material, textured: textured,
         normals: options.meshNormals, precision: options.precision,
-        cache: meshCache)
+        threads: options.threads, cache: meshCache)
     } catch {
       switch error {
       case .inFile(let inner): throw inner

@@ -17,20 +17,25 @@ package struct SceneOptions: Sendable {
   /// Kinds of object beyond the readers' own, read by name (the course's
   /// `CourseShapes.all`, passed in by the command line).
   package var shapes: [ShapeKind] = []
+  /// Threads that read a large scene or mesh file and parse a large mesh,
+  /// as the render's: the scene and its meshes are the same for any
+  /// count. Every core by default, as a render's (`--threads`).
+  package var threads: Int
 
   package init(
     meshNormals: MeshNormals, precision: Precision = .double,
-    shapes: [ShapeKind] = []
+    shapes: [ShapeKind] = [], threads: Int = Platform.availableCores
   ) {
     self.meshNormals = meshNormals
     self.precision = precision
     self.shapes = shapes
+    self.threads = threads
   }
 
   /// The reading each image style's images were made with.
   package init(
     style: ImageStyle, precision: Precision = .double,
-    shapes: [ShapeKind] = []
+    shapes: [ShapeKind] = [], threads: Int = Platform.availableCores
   ) {
     switch style {
     case .course: meshNormals = .areaWeighted
@@ -38,6 +43,7 @@ package struct SceneOptions: Sendable {
     }
     self.precision = precision
     self.shapes = shapes
+    self.threads = threads
   }
 }
 

@@ -304,7 +304,7 @@ extension SceneParser {
       let mesh = try MeshLoader.load(
         resolved, materialIndex: material, textured: textured ?? false,
         normals: options.meshNormals, precision: options.precision,
-        cache: meshCache)
+        threads: options.threads, cache: meshCache)
       meshFiles.append(resolved)
       if !mesh.hasTextureCoordinates {
         meshesWithoutTextureCoordinates.append((material, token, resolved))

@@ -115,7 +115,7 @@ package struct SceneParser {
   ) throws(SceneError) -> Scene {
     let bytes: SceneBytes
     do {
-      bytes = try SceneBytes.contentsOf(path)
+      bytes = try SceneBytes.contentsOf(path, threads: options.threads)
     } catch {
       throw SceneError(file: path, line: 0, column: 0, message: error.reason)
     }

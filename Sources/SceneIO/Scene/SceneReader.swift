@@ -14,7 +14,7 @@ package enum SceneReader {
   ) throws(SceneError) -> Scene {
     let bytes: SceneBytes
     do {
-      bytes = try SceneBytes.contentsOf(path)
+      bytes = try SceneBytes.contentsOf(path, threads: options.threads)
     } catch {
       throw SceneError(
         file: SceneParser.escaped(path), line: 0, column: 0,

@@ -69,6 +69,36 @@ final class CompiledSceneMeshesTests: XCTestCase {
     try check(NaiveKernel<Float>.self)
   }
 
+  /// Each compiled triangle's material and normals are its face's
+  /// (`TriangleSources`) with a degenerate face left out and the rest in
+  /// the hierarchy's order; in scene order, with every face kept, no face
+  /// numbers are stored.
+  func testSources_FacesThroughDegenerateAndHierarchy() throws {
+    var scene = try scene()
+    let degenerate = Triangle<Double>(
+      Vector3(0, 0, 0), Vector3(1, 1, 1), Vector3(2, 2, 2), materialIndex: 2)
+    scene.root = Group([.triangle(degenerate)] + scene.root.objects)
+    let model = Array(scene.root.flattened().triangles)
+    let compiled = CompiledScene<StableKernel<Double>>(
+      scene, hierarchyThreshold: 2)
+    let hierarchy = try XCTUnwrap(compiled.triangleHierarchy)
+    XCTAssertEqual(compiled.triangleCount, model.count - 1)
+    XCTAssertFalse(compiled.triangleSources.followsFaces)
+    for index in 0..<compiled.triangleCount {
+      let triangle = model[Int(hierarchy.order[index]) + 1]
+      XCTAssertEqual(
+        compiled.materialIndex(of: .triangle(index)), triangle.materialIndex,
+        "\(index)")
+      let normals = compiled.vertexNormals(ofTriangle: index)
+      XCTAssertEqual(normals?.n0, triangle.vertexNormals?.n0, "\(index)")
+      XCTAssertEqual(normals?.n1, triangle.vertexNormals?.n1, "\(index)")
+      XCTAssertEqual(normals?.n2, triangle.vertexNormals?.n2, "\(index)")
+    }
+    let projected = CompiledScene<StableKernel<Double>>(
+      try self.scene(), triangleProjectionThreshold: 0)
+    XCTAssertTrue(projected.triangleSources.followsFaces)
+  }
+
   /// A Double render shares the normals of a scene's only mesh with
   /// normals with the model; a Float render converts them.
   func testNormals_SharedInDouble() throws {

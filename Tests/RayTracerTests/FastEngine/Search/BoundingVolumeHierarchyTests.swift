@@ -679,6 +679,36 @@ final class BoundingVolumeHierarchyTests: XCTestCase {
     XCTAssertEqual(concurrent.order, again.order)
   }
 
+  /// The same tree from 1, 2, 3, 7 and 16 threads: the primitives, the
+  /// root's bounds and bins in one part per thread (here of at least 500
+  /// boxes, so 16 threads make 16 parts), merged in order.
+  func testBuild_AnyThreadCount_SameTree() {
+    var generator = SplitMix64(seed: 0x7EAD5)
+    let boxes = (0..<20_000).map {
+      _ -> (lower: Vector3<Double>, upper: Vector3<Double>) in
+      let center =
+        generator.unitVector(Double.self) * generator.logUniform(1, 100)
+      // Some boxes share their bounds, so the merge order of equal values
+      // (and of ±0) shows.
+      let radius: Double =
+        generator.next() % 8 == 0 ? 1 : generator.logUniform(0.01, 2)
+      return BoundingVolumeHierarchy<Double>.box(
+        center: Vector3(
+          center.x.rounded(), center.y.rounded(), center.z.rounded()),
+        radius: radius, rayOrigin: .zero, model: .cancellationFree)
+    }
+    typealias BVH = BoundingVolumeHierarchy<Double>
+    let one = BVH(boxes: boxes, concurrentFrom: 1000, threads: 1)
+    XCTAssertEqual(
+      BVH.parts(boxes.count, concurrentFrom: 1000, threads: 16), 16)
+    for threads in [2, 3, 7, 16] {
+      let many = BVH(boxes: boxes, concurrentFrom: 1000, threads: threads)
+      XCTAssertEqual(many.nodes, one.nodes, "\(threads) threads: nodes")
+      XCTAssertEqual(many.order, one.order, "\(threads) threads: order")
+      XCTAssertEqual(many.depth, one.depth, "\(threads) threads: depth")
+    }
+  }
+
   /// Spheres give the same tree whether their boxes, the root's bounds
   /// and bins and the two subtrees are computed on two threads or one, and
   /// the same as their boxes given directly.

@@ -507,8 +507,9 @@ final class OBJReaderTests: XCTestCase {
 
   /// Mutated meshes (words deleted, duplicated or replaced; bytes deleted
   /// or inserted) either parse or throw one well-formed one-line error
-  /// pointing inside the text. A trap would end the run. Read in two
-  /// halves (`parseInHalves`), each gives the same mesh or the same error.
+  /// pointing inside the text. A trap would end the run. Read in two to
+  /// four parts (`parseInParts`), each gives the same mesh or the same
+  /// error.
   func testParse_MutatedMeshesNeverTrap() throws {
     let original = Array(
       (Self.elements
@@ -534,8 +535,8 @@ final class OBJReaderTests: XCTestCase {
         assertWellFormed(error, in: bytes, seed: seed)
       }
       XCTAssertEqual(
-        OBJReaderHalvesTests.readInHalves(bytes),
-        OBJReaderHalvesTests.read(bytes), "seed \(seed)")
+        OBJReaderPartsTests.read(bytes, parts: 2 + Int(seed % 3)),
+        OBJReaderPartsTests.read(bytes), "seed \(seed)")
     }
     print("mutated meshes: \(outcomes)")
     // Both outcomes must occur, or the mutations are too weak or too strong.

@@ -37,6 +37,22 @@ final class SceneBytesTests: XCTestCase {
     }
   }
 
+  /// Every byte, read by 1, 2, 3, 7 or 16 threads: one part per thread,
+  /// each of at least half the threshold (16 parts of 8 MiB and a bit,
+  /// whose parts are not pages).
+  func testContentsOf_EveryByteAnyThreads() throws {
+    var generator = SplitMix64(seed: 0x5CE50)
+    let count = 16 * SceneBytes.splitThreshold / 2 + 4097
+    let bytes = (0..<count).map { _ in
+      UInt8(truncatingIfNeeded: generator.next())
+    }
+    try Data(bytes).write(to: URL(fileURLWithPath: path))
+    for threads in [1, 2, 3, 7, 16] {
+      let read = try SceneBytes.contentsOf(path, threads: threads)
+      XCTAssertTrue(Array(read.buffer) == bytes, "\(threads) threads")
+    }
+  }
+
   /// A scene read in halves parses to the scene its bytes give, to the
   /// bit, and its errors carry the file's name and their position.
   func testParse_SceneReadInHalvesAsItsBytes() throws {

@@ -8,10 +8,10 @@ import XCTest
 @testable import Numerics
 @testable import PlatformSupport
 
-/// An OBJ file read on two threads (`OBJReader.parseInHalves`) gives the
-/// mesh, or the error at its line and column, that one thread gives,
-/// whatever the second half holds.
-final class OBJReaderHalvesTests: XCTestCase {
+/// An OBJ file read in parts on several threads (`OBJReader.parseInParts`)
+/// gives the mesh, or the error at its line and column, that one thread
+/// gives, whatever the later parts hold and however many there are.
+final class OBJReaderPartsTests: XCTestCase {
   /// A grid of n × n quads: its vertices, then its faces, each written
   /// `form` ("v", "v/vt", "v//vn", "v/vt/vn"), with an element of each kind
   /// per vertex.
@@ -57,33 +57,39 @@ final class OBJReaderHalvesTests: XCTestCase {
 
   /// `bytes` as "mesh.obj" read in two halves, or its error.
   static func readInHalves(_ bytes: [UInt8]) -> Result<OBJMesh, SceneError> {
-    read(bytes, splitFrom: 0)
+    read(bytes, parts: 2)
   }
 
-  /// `bytes` as "mesh.obj" read on one thread, or its error.
-  static func read(_ bytes: [UInt8], splitFrom: Int = .max) -> Result<
+  /// `bytes` as "mesh.obj" read in `parts` parts however small (on one
+  /// thread for 1), or its error.
+  static func read(_ bytes: [UInt8], parts: Int = 1) -> Result<
     OBJMesh, SceneError
   > {
     do throws(SceneError) {
       return .success(
-        try OBJReader.parse(
-          bytes: bytes, file: "mesh.obj", splitFrom: splitFrom))
+        try OBJReader.parse(bytes: bytes, file: "mesh.obj", parts: parts))
     } catch {
       return .failure(error)
     }
   }
+
+  /// The part counts every reading is checked with.
+  static let partCounts = [2, 3, 7, 16]
 
   func assertSame(
     _ lines: [String], _ label: String, file: StaticString = #filePath,
     line: UInt = #line
   ) {
     let bytes = Array((lines.joined(separator: "\n") + "\n").utf8)
-    XCTAssertEqual(
-      Self.readInHalves(bytes), Self.read(bytes), label, file: file,
-      line: line)
+    let one = Self.read(bytes)
+    for parts in Self.partCounts {
+      XCTAssertEqual(
+        Self.read(bytes, parts: parts), one, "\(label), \(parts) parts",
+        file: file, line: line)
+    }
   }
 
-  func testHalves_AsOneThread_EveryForm() {
+  func testParts_AsOneThread_EveryForm() {
     for form in ["v", "v/vt", "v//vn", "v/vt/vn"] {
       for interleaved in [false, true] {
         assertSame(grid(12, form: form, interleaved: interleaved), form)
@@ -93,7 +99,7 @@ final class OBJReaderHalvesTests: XCTestCase {
 
   /// Lines whose reading depends on the first half, or that are wrong,
   /// placed in the second half (the last lines of the file).
-  func testHalves_AsOneThread_SecondHalfLines() {
+  func testParts_AsOneThread_SecondHalfLines() {
     let cases = [
       "f -1 -2 -3", "f 1 2 -1", "f 1/1 2/2 3/3", "f 1//1 2//2 3//3",
       "f 1 2 999999", "f 0 1 2", "f 1 2", "v 1 2", "x 1 2 3",
@@ -118,11 +124,41 @@ final class OBJReaderHalvesTests: XCTestCase {
 
   /// Files too small or without a line to split at near their middle,
   /// and empty ones, read on one thread as ever.
-  func testHalves_NoSplit() {
+  func testParts_NoSplit() {
     assertSame([], "empty")
     let continued = Array(repeating: " \\", count: 50)
     assertSame(["v 0 0 0 \\"] + continued, "one line")
-    XCTAssertNil(
-      OBJReader.splitPoint(UnsafeBufferPointer(start: nil, count: 0)))
+    XCTAssertEqual(
+      OBJReader.splitPoints(
+        UnsafeBufferPointer(start: nil, count: 0), parts: 16), [])
+  }
+
+  /// A mesh in 1, 2, 3, 7 and 16 parts: the same mesh, split at as many
+  /// places as asked, and lines whose reading depends on earlier parts or
+  /// that are wrong, placed in every part.
+  func testParts_AnyCount_SameMeshOrError() {
+    let lines = grid(24, form: "v/vt/vn", interleaved: true)
+    let bytes = Array((lines.joined(separator: "\n") + "\n").utf8)
+    let one = Self.read(bytes)
+    guard case .success(let mesh) = one else {
+      return XCTFail("the grid does not parse")
+    }
+    XCTAssertEqual(mesh.triangleCount, 2 * 24 * 24)
+    for parts in [2, 3, 7, 16] {
+      let splits = bytes.withUnsafeBufferPointer {
+        OBJReader.splitPoints($0, parts: parts)
+      }
+      XCTAssertEqual(splits.count, parts - 1, "\(parts) parts")
+      XCTAssertEqual(Self.read(bytes, parts: parts), one, "\(parts) parts")
+    }
+    // Each wrong or dependent line in turn at 1/8, 3/8, 5/8 and 7/8 of the
+    // file: in several parts' middles, for each count.
+    for text in ["f -1 -2 -3", "f 1/1 2/2 3/3", "f 1 2 999999", "x 1 2"] {
+      for eighth in [1, 3, 5, 7] {
+        var mutated = lines
+        mutated.insert(text, at: lines.count * eighth / 8)
+        assertSame(mutated, "\(text) at \(eighth)/8")
+      }
+    }
   }
 }
