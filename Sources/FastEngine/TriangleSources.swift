@@ -15,15 +15,12 @@ import PlatformSupport
 /// degenerate face left out, no large one moved after the others, no
 /// hierarchy's order): a mesh rendered through screen tiles.
 struct TriangleSources: Sendable {
-  /// The meshes in the list's order without their vertices and normals,
-  /// which the records and `CompiledScene.vertexNormals` hold: only index
-  /// arrays and materials, shared with the scene (a transformed mesh's
-  /// placed vertices are not kept alive by them).
-  private var meshes: [TriangleMesh<Double>] = []
+  /// Per mesh, in the list's order, what its faces' materials and normals
+  /// are read from: the mesh's own arrays, shared with the scene, not
+  /// copied (a transformed mesh's placed vertices are not kept alive).
+  private var meshes: [Faces] = []
   /// Per mesh, the face number of its first triangle.
   private var firsts: [Int] = []
-  /// Per mesh, where its normals begin in `CompiledScene.vertexNormals`.
-  private var normalBases: [Int] = []
   /// The faces' count so far: the next mesh's first face number.
   private var faces = 0
   /// Per compiled triangle, its face number; empty while `followsFaces`.
@@ -38,12 +35,12 @@ struct TriangleSources: Sendable {
   /// Adds `mesh`, whose faces follow the earlier meshes' in numbering,
   /// its normals at `normalBase` in the compiled normals.
   mutating func add(_ mesh: TriangleMesh<Double>, normalBase: Int) {
-    var indexed = mesh
-    indexed.vertices = []
-    indexed.normals = []
-    meshes.append(indexed)
+    meshes.append(
+      Faces(
+        material: mesh.materialIndex, materials: mesh.materialIndices,
+        normals: mesh.normalsFollowVertices
+          ? mesh.vertexIndices : mesh.normalIndices, normalBase: normalBase))
     firsts.append(faces)
-    normalBases.append(normalBase)
     faces += mesh.count
   }
 
@@ -64,8 +61,7 @@ struct TriangleSources: Sendable {
   }
 
   /// Puts the triangles into the hierarchy's leaf order (`arrange`).
-  mutating func arrange(_ hierarchy: BoundingVolumeHierarchy<some RayScalar>)
-  {
+  mutating func arrange(_ hierarchy: BoundingVolumeHierarchy<some RayScalar>) {
     if followsFaces { storeNumbers() }
     hierarchy.arrange(&numbers)
   }
@@ -85,19 +81,38 @@ struct TriangleSources: Sendable {
   }
 
   /// Compiled triangle `index`'s material.
+  @inline(__always)
   func material(_ index: Int) -> Int32 {
     let (mesh, face) = locate(index)
-    return Int32(truncatingIfNeeded: meshes[mesh].material(at: face))
+    let materials = meshes[mesh].materials
+    return Int32(
+      truncatingIfNeeded: materials.isEmpty
+        ? meshes[mesh].material : materials[face])
   }
 
   /// Compiled triangle `index`'s normals in the compiled normals, or −1s.
+  @inline(__always)
   func normals(_ index: Int) -> TriangleNormalIndices {
     let (mesh, face) = locate(index)
-    guard let corners = meshes[mesh].normalCorners(face) else { return .none }
-    let base = normalBases[mesh]
+    let normals = meshes[mesh].normals
+    guard !normals.isEmpty, normals[3 * face] >= 0 else { return .none }
+    let base = Int32(truncatingIfNeeded: meshes[mesh].normalBase)
     return TriangleNormalIndices(
-      n0: Int32(truncatingIfNeeded: base + corners.0),
-      n1: Int32(truncatingIfNeeded: base + corners.1),
-      n2: Int32(truncatingIfNeeded: base + corners.2))
+      n0: base + normals[3 * face], n1: base + normals[3 * face + 1],
+      n2: base + normals[3 * face + 2])
+  }
+
+  /// A mesh's arrays that its faces' materials and normals are read from
+  /// (`TriangleMesh`'s, shared).
+  private struct Faces: Sendable {
+    /// Every face's material, unless `materials` gives one each.
+    var material: Int
+    var materials: [Int]
+    /// Three per face into the mesh's normals, −1s for a face without;
+    /// empty when none has them. A mesh whose normals follow its vertices
+    /// gives its vertex indices.
+    var normals: [Int32]
+    /// Where the mesh's normals begin in `CompiledScene.vertexNormals`.
+    var normalBase: Int
   }
 }

@@ -14,7 +14,8 @@ package enum EngineRenders {
     let course = CourseEngine.render(
       scene, textures: textures, settings: request.settings)
     let fast = FastScene(
-      scene, textures: textures, options: request.fast
+      scene, textures: textures, options: request.fast,
+      threads: request.settings.threads
     ).render(request.settings).buffers.doubles
     return (course, fast)
   }

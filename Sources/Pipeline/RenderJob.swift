@@ -161,7 +161,8 @@ package enum RenderJob {
     var clock = Stopwatch()
     let compiled = FastScene(
       scene, textures: textures, options: output.request.fast,
-      thresholds: .render(supersampled: settings.supersamples))
+      thresholds: .render(supersampled: settings.supersamples),
+      threads: settings.threads)
     let compileSeconds = clock.lap()
     let rendered = repeatedly(
       output.request.repeats, progress: progress, clock: &clock,

@@ -243,7 +243,7 @@ struct Render: ParsableCommand {
         contentsOf: plan.scenePath,
         options: SceneOptions(
           style: plan.settings.style, precision: plan.request.fast.precision,
-          shapes: CourseShapes.all))
+          shapes: CourseShapes.all, threads: plan.settings.threads))
     } catch {
       printError(error.report)
       throw ExitCode.failure
