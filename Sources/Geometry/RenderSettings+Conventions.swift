@@ -39,7 +39,7 @@ extension RenderSettings {
 
   /// Whether depth and normals too are the means of a pixel's samples.
   @inlinable
-  public var supersamplesAll: Bool { supersamples && samplesAllOutputs }
+  package var supersamplesAll: Bool { supersamples && samplesAllOutputs }
 
   /// How far from a pixel's centre its rays can pass, in pixels beyond
   /// the pixel's own half: 0 for one ray through the centre, the filter's
