@@ -149,11 +149,9 @@ extension Renderer {
                             for column in tileColumns {
                               let slot = slot(row, column)
                               guard let hit = hits[slot].hit else { continue }
-                              sums[slot].add(
-                                Sample(
-                                  depth: hit.t * scene.lengthScale,
-                                  normal: wantsNormals ? normals[slot] : .zero,
-                                  color: .zero), all: true)
+                              sums[slot].addHit(
+                                depth: hit.t * scene.lengthScale,
+                                normal: wantsNormals ? normals[slot] : .zero)
                             }
                           }
                         }

@@ -20,8 +20,10 @@ extension Renderer {
       let (layer, layerHit, layerRay) = scene.nearerInLayers(ray, than: hit)
     {
       let layerScene = scene.layers[layer]
-      let normal = layerScene.normal(
-        of: layerHit.what, layerRay, t: layerHit.t)
+      let normal =
+        normals || shade
+        ? layerScene.normal(of: layerHit.what, layerRay, t: layerHit.t)
+        : .zero
       return Sample(
         depth: layerHit.t * layerScene.lengthScale, normal: normal,
         color: shade
@@ -110,8 +112,14 @@ struct SampleSums<S: RayScalar> {
   mutating func add(_ sample: Sample<S>, all: Bool) {
     color += sample.color
     guard all, let depth = sample.depth else { return }
+    addHit(depth: depth, normal: sample.normal)
+  }
+
+  /// A sample that hit, for depth and normal.
+  @inline(__always)
+  mutating func addHit(depth: S, normal: Vector3<S>) {
     self.depth += depth
-    normal += sample.normal
+    self.normal += normal
     hits += 1
   }
 

@@ -6,7 +6,7 @@ import Numerics
 import PlatformSupport
 
 /// Scenes of many random spheres in the course's text format, laid out as
-/// `../shared/tools/gen_spheres.py` lays them out (centres uniform in
+/// the course tools' `gen_spheres.py` lays them out (centres uniform in
 /// [−10, 10]³, radii uniform in [r/2, r] with r = 1.6·10/√n, so about half
 /// the camera rays hit whatever the count; four materials; the camera on +z
 /// framing the cube's near face), but drawn from SplitMix64 so that the
