@@ -7,7 +7,6 @@ import SceneDescription
 import Foundation
 import XCTest
 
-
 // The course's shapes, by the names the course gives them: RayTracer's
 // scene description has generic types of the same names, which these
 // declarations of the test module's own shadow.
@@ -35,9 +34,18 @@ let sharedReference = "\(projectFolder)/../shared/reference"
 let runsLongTests =
   ProcessInfo.processInfo.environment["RAYTRACE_LONG_TESTS"] != nil
 
+/// Of a slow test's `cases`, all with RAYTRACE_LONG_TESTS (CI), every other
+/// one otherwise (the first included).
+func quickCases<C: Collection>(_ cases: C) -> [C.Element] {
+  runsLongTests
+    ? Array(cases)
+    : cases.enumerated().filter { $0.offset % 2 == 0 }.map(\.element)
+}
+
 /// The files of `folder` whose names end in one of `suffixes`, sorted.
 func files(in folder: String, endingIn suffixes: [String]) -> [String] {
-  let names = (try? FileManager.default.contentsOfDirectory(atPath: folder))
+  let names =
+    (try? FileManager.default.contentsOfDirectory(atPath: folder))
     ?? []
   return names.filter { name in suffixes.contains { name.hasSuffix($0) } }
     .sorted().map { "\(folder)/\($0)" }
@@ -98,7 +106,8 @@ func shareWithin(_ levels: Int, _ a: Image8, _ b: Image8) -> Double {
   for row in 0..<a.height {
     for column in 0..<a.width {
       let (p, q) = (a[column, row], b[column, row])
-      if abs(Int(p.0) - Int(q.0)) <= levels && abs(Int(p.1) - Int(q.1)) <= levels
+      if abs(Int(p.0) - Int(q.0)) <= levels
+        && abs(Int(p.1) - Int(q.1)) <= levels
         && abs(Int(p.2) - Int(q.2)) <= levels
       {
         within += 1

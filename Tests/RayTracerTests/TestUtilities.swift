@@ -323,6 +323,18 @@ extension XCTestCase {
     runsLongTests ? iterations : max(1, (iterations + 3) / 4)
   }
 
+  /// Of a slow test's `cases`, all with RAYTRACE_LONG_TESTS (CI), every
+  /// other one otherwise, starting at `half` (0 or 1), so that a student's
+  /// `swift test` runs each kind of case once in one of two calls that take
+  /// halves 0 and 1.
+  static func quickCases<C: Collection>(_ cases: C, half: Int = 0)
+    -> [C.Element]
+  {
+    runsLongTests
+      ? Array(cases)
+      : cases.enumerated().filter { $0.offset % 2 == half }.map(\.element)
+  }
+
   /// Skips a case that takes seconds (exhaustive sweeps, every stiff scene
   /// against the double-double reference) unless RAYTRACE_LONG_TESTS is
   /// set, so that `swift test` stays within a minute on two cores; `.ci/run`

@@ -157,8 +157,8 @@ final class CommandLineTests: XCTestCase {
     XCTAssertEqual(try read("a.png"), try read("b.png"))
     XCTAssertEqual(try read("a.png"), try read("c.png"))
     let both = try run([
-      "scenes/spheres.txt", "--depth-range", "-10", "-1", "--depth",
-      folder + "/d.png",
+      "scenes/spheres.txt", "--size", "16", "12", "--depth-range", "-10", "-1",
+      "--depth", folder + "/d.png",
     ])
     XCTAssertEqual(both.status, 0, both.stderr)
     let reversed = try run([
@@ -231,7 +231,8 @@ final class CommandLineTests: XCTestCase {
         + "(±3.4028235e+38); use --precision double\n")
     XCTAssertFalse(files().contains("out.png"))
     let double = try run([
-      scene, "--precision", "double", "-o", folder + "/out.png",
+      scene, "--size", "16", "12", "--precision", "double", "-o",
+      folder + "/out.png",
     ])
     XCTAssertEqual(double.status, 0, double.stderr)
   }
@@ -597,7 +598,9 @@ final class CommandLineTests: XCTestCase {
       "\(folder)/Textures/crate.bmp: error: cannot read the texture: cannot "
         + "open the file: No such file or directory\n")
     XCTAssertFalse(files().contains("m.png"))
-    let depthOnly = try run([folder + "/t.txt", "--depth", folder + "/d2.png"])
+    let depthOnly = try run([
+      folder + "/t.txt", "--size", "16", "12", "--depth", folder + "/d2.png",
+    ])
     XCTAssertEqual(depthOnly.status, 0, "depth never opens a texture")
   }
 

@@ -205,7 +205,10 @@ final class TriangleTilesTests: XCTestCase {
   func testRandomScenes_StableFloat() {
     checkRandomScenes(StableKernel<Float>.self, base: 0x7A2)
   }
-  func testRandomScenes_NaiveDouble() {
+  /// (With RAYTRACE_LONG_TESTS: the textbook kernel in Double is also
+  /// the hierarchy tests'.)
+  func testRandomScenes_NaiveDouble() throws {
+    try skipUnlessLongTests()
     checkRandomScenes(NaiveKernel<Double>.self, base: 0x7A3)
   }
   func testRandomScenes_NaiveFloat() {

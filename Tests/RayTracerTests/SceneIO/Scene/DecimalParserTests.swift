@@ -169,7 +169,7 @@ final class DecimalParserTests: XCTestCase {
   /// half are scene-sized, log-uniform in [1e−8, 1e8] (mostly the fast
   /// path, and its edges where %.17g gives 17 digits).
   func testParse_RandomFormattedValues() {
-    forEachSeed(100_000, base: 0xDEC1_0001) { generator, seed in
+    forEachSeed(Self.seedCount(100_000), base: 0xDEC1_0001) { generator, seed in
       var value: Double
       if Bool.random(using: &generator) {
         value = Double(bitPattern: generator.next())
@@ -190,7 +190,7 @@ final class DecimalParserTests: XCTestCase {
   /// point, a sign, and an exponent in [−30, 30], around the fast path's
   /// limits (19 digits, 2^53, 10^±22).
   func testParse_RandomDecimalStrings() {
-    forEachSeed(100_000, base: 0xDEC1_0002) { generator, seed in
+    forEachSeed(Self.seedCount(100_000), base: 0xDEC1_0002) { generator, seed in
       let count = Int.random(in: 1...22, using: &generator)
       var digits = (0..<count).map { _ in
         String(Int.random(in: 0...9, using: &generator))
@@ -295,7 +295,7 @@ final class DecimalParserTests: XCTestCase {
   /// `%.15g` and the shortest round trip of a Double when their mantissa
   /// fits (below 2^53, exponent within ±22).
   func testPrefix_SceneShapesTakeTheFastPath() {
-    forEachSeed(100_000, base: 0xDEC1_0003) { generator, seed in
+    forEachSeed(Self.seedCount(100_000), base: 0xDEC1_0003) { generator, seed in
       let value = generator.sign() * generator.logUniform(1e-8, 1e8)
       assertFast(String(format: "%.7g", value), "seed \(seed)")
       assertFast(String(format: "%.7e", value), "seed \(seed)")
@@ -314,7 +314,7 @@ final class DecimalParserTests: XCTestCase {
   /// Long mantissas and far exponents: whichever path converts them, the
   /// value is the standard library's.
   func testPrefix_LongMantissasAndFarExponents() {
-    forEachSeed(50_000, base: 0xDEC1_0004) { generator, seed in
+    forEachSeed(Self.seedCount(50_000), base: 0xDEC1_0004) { generator, seed in
       let digits = (0..<Int.random(in: 1...40, using: &generator)).map { _ in
         String(Int.random(in: 0...9, using: &generator))
       }.joined()

@@ -70,7 +70,8 @@ final class SceneParserTests: XCTestCase {
       _ = try parse("\u{FEFF}PerspectiveCamera { centre 0 0 1 }")
       XCTFail("a misspelt field")
     } catch {
-      XCTAssertTrue(error.description.hasPrefix("test.txt:1:21: error:"), error.description)
+      XCTAssertTrue(
+        error.description.hasPrefix("test.txt:1:21: error:"), error.description)
     }
   }
 
@@ -767,7 +768,8 @@ final class SceneParserTests: XCTestCase {
       "radius", "center", "numObjects", "\n",
     ]
     var outcomes = (parsed: 0, failed: 0, spliced: 0)
-    forEachSeed(1500, base: 0x2_7EAD) { generator, seed in
+    let seeds = Self.seedCount(1500)
+    forEachSeed(seeds, base: 0x2_7EAD) { generator, seed in
       var bytes = original
       if seed != 0x2_7EAD {
         for _ in 0..<Int.random(in: 1...3, using: &generator) {
@@ -806,9 +808,10 @@ final class SceneParserTests: XCTestCase {
       }
     }
     print("group read on two threads: \(outcomes)")
-    XCTAssertGreaterThan(outcomes.parsed, 100)
-    XCTAssertGreaterThan(outcomes.failed, 300)
-    XCTAssertGreaterThan(outcomes.spliced, 300)
+    // Of 1500 seeds (RAYTRACE_LONG_TESTS) more than 100, 300 and 300.
+    XCTAssertGreaterThan(outcomes.parsed, seeds / 15)
+    XCTAssertGreaterThan(outcomes.failed, seeds / 5)
+    XCTAssertGreaterThan(outcomes.spliced, seeds / 5)
   }
 
   private func mutate(
