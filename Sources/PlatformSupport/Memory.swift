@@ -82,7 +82,8 @@ extension Memory {
     }
     #if canImport(Glibc)
       resource(Int32(RLIMIT_AS.rawValue), "its address-space limit (ulimit -v)")
-      resource(Int32(RLIMIT_DATA.rawValue), "its data-segment limit (ulimit -d)")
+      resource(
+        Int32(RLIMIT_DATA.rawValue), "its data-segment limit (ulimit -d)")
     #else
       resource(RLIMIT_AS, "its address-space limit (ulimit -v)")
       resource(RLIMIT_DATA, "its data-segment limit (ulimit -d)")
@@ -106,13 +107,52 @@ extension Memory {
     return result.sorted { $0.bytes < $1.bytes }
   }
 
+  /// This process's own peak resident memory in bytes, or nil where the
+  /// system does not say. On Linux not `ru_maxrss`: the kernel carries the
+  /// larger of a process's and its parent's peak across `exec`, so every
+  /// child of a large process (a bench that has written a big scene)
+  /// reports at least the parent's peak; `VmHWM` of /proc/self/status is
+  /// this process's alone. On macOS `ru_maxrss` is the task's own, in
+  /// bytes.
+  package static func ownPeakBytes() -> Int? {
+    #if canImport(Darwin)
+      var usage = rusage()
+      guard getrusage(RUSAGE_SELF, &usage) == 0 else { return nil }
+      return Int(usage.ru_maxrss)
+    #else
+      let descriptor = open("/proc/self/status", O_RDONLY | O_CLOEXEC)
+      guard descriptor >= 0 else { return nil }
+      defer { close(descriptor) }
+      var bytes: [UInt8] = []
+      var buffer = [UInt8](repeating: 0, count: 4096)
+      while true {
+        let count = buffer.withUnsafeMutableBytes {
+          read(descriptor, $0.baseAddress, $0.count)
+        }
+        guard count > 0 else { break }
+        bytes += buffer[..<count]
+      }
+      // "VmHWM:\t  123456 kB"
+      for line in String(decoding: bytes, as: UTF8.self).split(separator: "\n")
+      where line.hasPrefix("VmHWM:") {
+        let fields = line.split(whereSeparator: \.isWhitespace)
+        guard fields.count == 3, fields[2] == "kB", let kib = Int(fields[1])
+        else { return nil }
+        return kib * 1024
+      }
+      return nil
+    #endif
+  }
+
   /// The whole number a small file holds ("max" and anything else: nil).
   static func number(inFile path: String) -> Int? {
     let descriptor = open(path, O_RDONLY | O_CLOEXEC)
     guard descriptor >= 0 else { return nil }
     defer { close(descriptor) }
     var buffer = [UInt8](repeating: 0, count: 64)
-    let count = buffer.withUnsafeMutableBytes { read(descriptor, $0.baseAddress, 64) }
+    let count = buffer.withUnsafeMutableBytes {
+      read(descriptor, $0.baseAddress, 64)
+    }
     guard count > 0 else { return nil }
     let text = String(decoding: buffer[..<count], as: UTF8.self)
     return Int(text.filter { !$0.isWhitespace })

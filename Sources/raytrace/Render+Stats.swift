@@ -55,5 +55,11 @@ extension Render {
             + "\(seconds(report.firstRenderSeconds)))"
           : ""))
     printError("write: \(seconds(report.writeSeconds))")
+    if let peak = Memory.ownPeakBytes() {
+      // The bench reads it: its own children's `wait4` figures carry the
+      // bench's peak on Linux (`Memory.ownPeakBytes`).
+      printError(
+        "peak memory: \(formatted(Double(peak) / 1_048_576, digits: 4)) MiB")
+    }
   }
 }

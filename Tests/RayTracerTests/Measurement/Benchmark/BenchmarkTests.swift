@@ -27,6 +27,38 @@ final class BenchmarkTests: XCTestCase {
     XCTAssertNil(Benchmark.objectCount(inStats: "scene: x: many spheres"))
   }
 
+  /// Each row's peak memory is the child's own, as its `--stats` reports
+  /// it, even after this process has grown: on Linux, `wait4`'s figure
+  /// for a child carries the parent's peak (the bench's, once it has
+  /// written the 5·10⁶-triangle mesh, was 1184 MiB for every row after).
+  func testPeakMemory_TheChildsOwn() throws {
+    XCTAssertEqual(
+      Benchmark.peakBytes(inStats: stats + "\npeak memory: 118.2 MiB\n"),
+      123_941_683)
+    XCTAssertNil(Benchmark.peakBytes(inStats: stats))
+    // This process past 256 MiB, every page touched.
+    let grown = [UInt8](repeating: 1, count: 256 << 20)
+    let folder = NSTemporaryDirectory() + "/peak-\(getpid())"
+    try FileManager.default.createDirectory(
+      atPath: folder, withIntermediateDirectories: true)
+    defer { try? FileManager.default.removeItem(atPath: folder) }
+    let outcome = try Benchmark.spawn(
+      CommandLineTests.executable,
+      [
+        CommandLineTests.packageRoot + "/scenes/spheres.txt", "--size", "16",
+        "16", "--depth", folder + "/d.png", "--stats",
+      ])
+    XCTAssertEqual(outcome.status, 0, outcome.stderr)
+    let own = try XCTUnwrap(
+      Benchmark.peakBytes(inStats: outcome.stderr), outcome.stderr)
+    XCTAssertGreaterThan(own, 1 << 20)
+    XCTAssertLessThan(own, 128 << 20, "a 16×16 render's own peak")
+    #if os(Linux)
+      XCTAssertGreaterThan(outcome.peakBytes, 256 << 20, "wait4's figure")
+    #endif
+    XCTAssertEqual(grown[grown.count - 1], 1)
+  }
+
   func testPeerSummaryLine() throws {
     let text = """
       2026-11-26 03:50:00 WARN something about the LLVM backend
