@@ -105,11 +105,18 @@ extension Group {
       case .transform(let inner): count(inner.object)
       }
     }
-    for object in objects {
-      if case .sphere = object {
-        counts.spheres += 1
-      } else {
-        count(object)
+    // Each object looked at where the list holds it: a `for object in
+    // objects` copied every entry out and destroyed it again (the enum's
+    // outlined copy, a call per entry), 35–40 ms of compiling 10⁶ spheres.
+    // (Handed to a closure, each was copied again.)
+    objects.withUnsafeBufferPointer { buffer in
+      guard let objects = buffer.baseAddress else { return }
+      for index in buffer.indices {
+        if case .sphere = objects[index] {
+          counts.spheres += 1
+        } else {
+          count(objects[index])
+        }
       }
     }
     result.spheres.reserveCapacityOnHugePages(counts.spheres)
@@ -174,12 +181,15 @@ extension Group {
             placement: (Matrix4<Double>(matrix), Matrix4<Double>(inverse))))
       }
     }
-    for object in objects {
-      // Most of a large scene: spheres straight in the root group.
-      if case .sphere(let sphere) = object {
-        result.spheres.append(sphere)
-      } else {
-        collect(object, nil)
+    objects.withUnsafeBufferPointer { buffer in
+      guard let objects = buffer.baseAddress else { return }
+      for index in buffer.indices {
+        // Most of a large scene: spheres straight in the root group.
+        if case .sphere(let sphere) = objects[index] {
+          result.spheres.append(sphere)
+        } else {
+          collect(objects[index], nil)
+        }
       }
     }
     return result
