@@ -112,7 +112,7 @@ extension Group {
     objects.withUnsafeBufferPointer { buffer in
       guard let objects = buffer.baseAddress else { return }
       for index in buffer.indices {
-        if case .sphere = objects[index] {
+        if objects[index].sphere != nil {
           counts.spheres += 1
         } else {
           count(objects[index])
@@ -185,7 +185,7 @@ extension Group {
       guard let objects = buffer.baseAddress else { return }
       for index in buffer.indices {
         // Most of a large scene: spheres straight in the root group.
-        if case .sphere(let sphere) = objects[index] {
+        if let sphere = objects[index].sphere {
           result.spheres.append(sphere)
         } else {
           collect(objects[index], nil)
@@ -266,5 +266,15 @@ extension TriangleMesh {
     scaled.storage = StorageTag()
     scaled.vertices = vertices.map { $0 * factor }
     return scaled
+  }
+}
+
+extension SceneObject {
+  /// The sphere this entry is, if it is one. Asked of an entry where its
+  /// list holds it (`Group.flattened`), it does not copy the entry out and
+  /// destroy it again as `if case .sphere` did.
+  var sphere: Sphere<Scalar>? {
+    if case .sphere(let sphere) = self { return sphere }
+    return nil
   }
 }
