@@ -69,10 +69,10 @@ struct Render: ParsableCommand {
     name: .customLong("depth-range"), parsing: .upToNextOption,
     help: ArgumentHelp(
       """
-        Map depths MIN..MAX to the depth image (default: the course style \
-        takes the nearest to the farthest hit closer than 40; the mit style \
-        the nearest to the farthest hit).
-        """,
+      Map depths MIN..MAX to the depth image (default: the course style \
+      takes the nearest to the farthest hit closer than 40; the mit style \
+      the nearest to the farthest hit).
+      """,
       valueName: "min max"))
   var depthRange: [Double] = []
 
@@ -85,49 +85,49 @@ struct Render: ParsableCommand {
   @Option(
     help: ArgumentHelp(
       """
-        Image convention: course (the Swift course's images) or mit (the \
-        original assignment's; the default with -input).
-        """,
+      Image convention: course (the Swift course's images) or mit (the \
+      original assignment's; the default with -input).
+      """,
       valueName: "style"))
   var style: ImageStyle?
 
   @Option(
     help:
       """
-        The fast engine's precision: double (the default) is exact to a few \
-        ulps on every scene of the stiff suite; float is faster but loses \
-        planets and far-from-origin scenes. Float implies --engine fast.
-        """
+      The fast engine's precision: double (the default) is exact to a few \
+      ulps on every scene of the stiff suite; float is faster but loses \
+      planets and far-from-origin scenes. Float implies --engine fast.
+      """
   )
   var precision: Precision?
 
   @Option(
     help:
       """
-        The fast engine's sphere intersection: stable (cancellation-free, \
-        the default) or naive (the textbook formula, for comparison). Naive \
-        implies --engine fast.
-        """
+      The fast engine's sphere intersection: stable (cancellation-free, \
+      the default) or naive (the textbook formula, for comparison). Naive \
+      implies --engine fast.
+      """
   )
   var intersection: IntersectionMethod?
 
   @Option(
     help: ArgumentHelp(
       """
-        Renderer: course (the default: the course's loop over every object \
-        by the hit protocol, Sources/Course) or fast (the same scene within \
-        a stated bound, much faster in a release build, exact for spheres \
-        and planes at any scale).
-        """,
+      Renderer: course (the default: the course's loop over every object \
+      by the hit protocol, Sources/Course) or fast (the same scene within \
+      a stated bound, much faster in a release build, exact for spheres \
+      and planes at any scale).
+      """,
       valueName: "engine"))
   var engine: Engine?
 
   @Option(
     help:
       """
-        Worker threads (default: all cores). The image is identical for any \
-        count.
-        """
+      Worker threads (default: all cores). The image is identical for any \
+      count.
+      """
   )
   var threads: Int?
 
@@ -135,19 +135,19 @@ struct Render: ParsableCommand {
     name: .customLong("png-level"),
     help:
       """
-        zlib level for PNG files, 0 to 9: lower is faster and larger, higher \
-        smaller and slower.
-        """
+      zlib level for PNG files, 0 to 9: lower is faster and larger, higher \
+      smaller and slower.
+      """
   )
   var pngLevel: Int = Int(PNGOptions.default.compressionLevel)
 
   @Option(
     help: ArgumentHelp(
       """
-        Rays per pixel for the shaded image: 1, 4, 9, 16, ... (a square), \
-        jittered on a grid of strata; depth and normals keep the pixel \
-        centre unless --sample-all-outputs.
-        """,
+      Rays per pixel for the shaded image: 1, 4, 9, 16, ... (a square), \
+      jittered on a grid of strata; depth and normals keep the pixel \
+      centre unless --sample-all-outputs.
+      """,
       valueName: "n"))
   var samples: Int = 1
 
@@ -155,9 +155,9 @@ struct Render: ParsableCommand {
     name: [.long, .customLong("filter", withSingleDash: true)],
     help:
       """
-        The pixel filter of supersampled shading: box (the pixel's square) or \
-        tent (a 2x2-pixel tent).
-        """
+      The pixel filter of supersampled shading: box (the pixel's square) or \
+      tent (a 2x2-pixel tent).
+      """
   )
   var filter: PixelFilter = .box
 
@@ -165,10 +165,10 @@ struct Render: ParsableCommand {
     name: .customLong("sample-all-outputs"),
     help:
       """
-        Depth and normals too are the means of the --samples rays of each \
-        pixel: depth over the rays that hit, normals with a miss as zero. \
-        Without a shaded image nothing is shaded.
-        """
+      Depth and normals too are the means of the --samples rays of each \
+      pixel: depth over the rays that hit, normals with a miss as zero. \
+      Without a shaded image nothing is shaded.
+      """
   )
   var sampleAllOutputs = false
 
@@ -176,30 +176,30 @@ struct Render: ParsableCommand {
     name: .customLong("jitter", withSingleDash: true),
     help:
       """
-        The assignment's spelling: samples are always jittered, so this \
-        changes nothing.
-        """
+      The assignment's spelling: samples are always jittered, so this \
+      changes nothing.
+      """
   )
   var jitter = false
 
   @Flag(
     help:
       """
-        Print what was rendered to standard error: size, rays, time, \
-        throughput, and which outputs were computed or left out.
-        """
+      Print what was rendered to standard error: size, rays, time, \
+      throughput, and which outputs were computed or left out.
+      """
   )
   var stats = false
 
   @Flag(
     help:
       """
-        Render with the course engine and with the fast engine, and report \
-        per output (all three when none is given) how far they differ, and \
-        what each engine hit at the first pixel where they do. The outputs \
-        given are written from the course engine. Exit status 1 when an \
-        output differs on more than 0.1 % of its pixels.
-        """
+      Render with the course engine and with the fast engine, and report \
+      per output (all three when none is given) how far they differ, and \
+      what each engine hit at the first pixel where they do. The outputs \
+      given are written from the course engine. Exit status 1 when an \
+      output differs on more than 0.1 % of its pixels.
+      """
   )
   var check = false
 
@@ -208,11 +208,11 @@ struct Render: ParsableCommand {
     name: .customLong("repeat"), parsing: .unconditional,
     help: ArgumentHelp(
       """
-        Render the image N more times in the same process; --stats then \
-        reports the median of those warm renders, and the first one's time \
-        (for benchmarks: peers time repeated renders). The files are written \
-        once.
-        """,
+      Render the image N more times in the same process; --stats then \
+      reports the median of those warm renders, and the first one's time \
+      (for benchmarks: peers time repeated renders). The files are written \
+      once.
+      """,
       valueName: "n"))
   var repeats = 0
 
@@ -272,13 +272,15 @@ struct Render: ParsableCommand {
       try checkEngines(scene, plan)
       return
     }
-    try render(scene, plan, parseSeconds: parseSeconds)
+    // Handed over: the render lets the scene go once compiled
+    // (`RenderJob.letGo`).
+    try render(consume scene, plan, parseSeconds: parseSeconds)
   }
 
   /// Writes the plan's files from the chosen engine.
-  private func render(_ scene: Scene, _ plan: Plan, parseSeconds: Double)
-    throws
-  {
+  private func render(
+    _ scene: consuming Scene, _ plan: Plan, parseSeconds: Double
+  ) throws {
     let png = try preflight(plan)
     let report: RenderReport
     do {
@@ -297,7 +299,7 @@ struct Render: ParsableCommand {
         }
       }
       report = try RenderJob.run(
-        scene: scene, request: plan.request, files: plan.files,
+        scene: consume scene, request: plan.request, files: plan.files,
         depthRange: plan.depthRange, png: png, progress: progress)
     } catch let error as SceneError {
       // A texture that cannot be read, named as a scene error is.
@@ -318,13 +320,7 @@ struct Render: ParsableCommand {
           + "\(formatted(report.firstRenderSeconds)) s; --engine fast renders "
           + "the same scene in a fraction of that.")
     }
-    // Kept until the process exits rather than freed here: a scene of 10⁶
-    // objects is freed one object at a time (30 ms), memory the operating
-    // system takes back at once when the process ends.
-    Self.keptUntilExit = scene
   }
-
-  nonisolated(unsafe) private static var keptUntilExit: Scene?
 
   /// Before a render: every file's folder writable and room for the
   /// files (one line and exit 1 otherwise); the PNG options to write with.
