@@ -17,27 +17,28 @@ import Geometry
 /// them) get three vertices each and, per triangle, their own material.
 public struct TriangleMesh<Scalar: RayScalar>: Hashable, Sendable {
   /// Positions, shared by the triangles that index them.
-  package var vertices: [Vector3<Scalar>] = []
+  @usableFromInline package var vertices: [Vector3<Scalar>] = []
   /// Normals, as given (not normalised); indexed by `normalIndices`, or by
   /// the vertex indices when `normalsFollowVertices`.
-  package var normals: [Vector3<Scalar>] = []
-  package private(set) var textureCoordinates: [TextureCoordinate<Scalar>] = []
+  @usableFromInline package var normals: [Vector3<Scalar>] = []
+  @usableFromInline package private(set) var textureCoordinates:
+    [TextureCoordinate<Scalar>] = []
   /// Three per triangle, into `vertices`, in the order of its vertices.
-  package private(set) var vertexIndices: [Int32] = []
+  @usableFromInline package private(set) var vertexIndices: [Int32] = []
   /// Three per triangle into `normals`, −1s for a triangle without vertex
   /// normals; may be empty when no triangle has them, and is empty when
   /// `normalsFollowVertices`.
-  package private(set) var normalIndices: [Int32] = []
+  @usableFromInline package private(set) var normalIndices: [Int32] = []
   /// Whether every triangle's normals are those of its vertices,
   /// `normals[vertexIndices[…]]`: a smoothed mesh, a normal per vertex.
-  package private(set) var normalsFollowVertices = false
+  @usableFromInline package private(set) var normalsFollowVertices = false
   /// Three per triangle into `textureCoordinates`, −1s for a triangle
   /// without; may be empty when no triangle has them.
-  package private(set) var textureIndices: [Int32] = []
+  @usableFromInline package private(set) var textureIndices: [Int32] = []
   /// Every triangle's material, unless `materialIndices` gives one each.
   public private(set) var materialIndex = 0
   /// One per triangle, or empty when all have `materialIndex`.
-  package private(set) var materialIndices: [Int] = []
+  @usableFromInline package private(set) var materialIndices: [Int] = []
   /// Which reading of a file the arrays come from: the same for every copy
   /// and `withMaterial` of one mesh, so that a renderer can build what it
   /// needs of a mesh once however often the scene names it. It takes no
@@ -149,7 +150,7 @@ public struct TriangleMesh<Scalar: RayScalar>: Hashable, Sendable {
   }
 
   /// The indices into `vertices` of triangle `index`'s v0, v1 and v2.
-  @inline(__always)
+  @inlinable @inline(__always)
   package func corners(_ index: Int) -> (Int, Int, Int) {
     (
       Int(vertexIndices[3 * index]), Int(vertexIndices[3 * index + 1]),
@@ -158,22 +159,22 @@ public struct TriangleMesh<Scalar: RayScalar>: Hashable, Sendable {
   }
 
   /// Triangle `index`'s indices into `normals`, or nil when it has none.
-  @inline(__always)
+  @inlinable @inline(__always)
   package func normalCorners(_ index: Int) -> (Int, Int, Int)? {
     normalsFollowVertices
       ? corners(index) : Self.corners(index, in: normalIndices)
   }
 
   /// Triangle `index`'s indices into `textureCoordinates`, or nil.
-  @inline(__always)
+  @inlinable @inline(__always)
   package func textureCorners(_ index: Int) -> (Int, Int, Int)? {
     Self.corners(index, in: textureIndices)
   }
 
   /// Triangle `index`'s three entries of a per-corner index array, or nil
   /// when the array is empty or the triangle's entries are −1 (none).
-  @inline(__always)
-  private static func corners(_ index: Int, in indices: [Int32])
+  @inlinable @inline(__always)
+  static func corners(_ index: Int, in indices: [Int32])
     -> (Int, Int, Int)?
   {
     guard !indices.isEmpty, indices[3 * index] >= 0 else { return nil }
@@ -194,13 +195,13 @@ public struct TriangleMesh<Scalar: RayScalar>: Hashable, Sendable {
   }
 
   /// Triangle `index`'s material.
-  @inline(__always)
+  @inlinable @inline(__always)
   package func material(at index: Int) -> Int {
     materialIndices.isEmpty ? materialIndex : materialIndices[index]
   }
 
   /// Triangle `index`'s three vertices.
-  @inline(__always)
+  @inlinable @inline(__always)
   package func vertices(at index: Int) -> (
     Vector3<Scalar>, Vector3<Scalar>, Vector3<Scalar>
   ) {
@@ -211,7 +212,7 @@ public struct TriangleMesh<Scalar: RayScalar>: Hashable, Sendable {
   /// Triangle `index`, as its face gave it.
   ///
   /// - Precondition: `indices.contains(index)`.
-  public func triangle(at index: Int) -> Triangle<Scalar> {
+  @inlinable public func triangle(at index: Int) -> Triangle<Scalar> {
     let (v0, v1, v2) = vertices(at: index)
     return Triangle(
       v0, v1, v2,
@@ -228,9 +229,9 @@ public struct TriangleMesh<Scalar: RayScalar>: Hashable, Sendable {
 }
 
 extension TriangleMesh: RandomAccessCollection {
-  public var startIndex: Int { 0 }
-  public var endIndex: Int { vertexIndices.count / 3 }
-  public subscript(position: Int) -> Triangle<Scalar> {
+  @inlinable public var startIndex: Int { 0 }
+  @inlinable public var endIndex: Int { vertexIndices.count / 3 }
+  @inlinable public subscript(position: Int) -> Triangle<Scalar> {
     triangle(at: position)
   }
 }
