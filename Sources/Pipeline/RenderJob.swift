@@ -107,7 +107,7 @@ package enum RenderJob {
     let textures =
       settings.outputs.contains(.shaded)
       ? try given ?? TextureLoader.load(for: scene) : []
-    // Counted before the run, which lets the scene go (`letGo`).
+    // Counted before the run, which lets the scene go (`runFast`).
     let texturedMaterials = scene.materials.count { $0.texturePath != nil }
     let texturesRead =
       Set(
@@ -121,18 +121,6 @@ package enum RenderJob {
     report.texturesRead = texturesRead
     return report
   }
-
-  /// Lets the description of a scene go once it is no longer needed: a
-  /// scene of a few objects now (a mesh's arrays, 114 MiB of the
-  /// 5·10⁶-triangle mesh's, are not held through the render), a scene of
-  /// many kept until the process exits, which gives their memory back at
-  /// once (10⁶ spheres are freed one object at a time, 30 ms). A caller
-  /// that keeps its own copy of the scene keeps it alive either way.
-  private static func letGo(_ scene: consuming Scene) {
-    if scene.root.objects.count > 10_000 { keptUntilExit.append(scene) }
-  }
-
-  nonisolated(unsafe) private static var keptUntilExit: [Scene] = []
 
   private static func run(
     _ scene: consuming Scene, _ textures: [Texture?], _ request: RenderRequest,
@@ -148,9 +136,7 @@ package enum RenderJob {
       batch: batch)
     switch request.engine {
     case .course:
-      let report = try runCourse(scene, textures, output, progress)
-      letGo(scene)
-      return report
+      return try runCourse(scene, textures, output, progress)
     case .fast:
       return try runFast(scene, textures, output, progress)
     }
@@ -178,8 +164,10 @@ package enum RenderJob {
       copy scene, textures: textures, options: output.request.fast,
       thresholds: .render(supersampled: settings.supersamples),
       threads: settings.threads)
-    // Compiled: the description is not needed for the render.
-    letGo(scene)
+    // Compiled: the description is let go before the render (freed here
+    // unless the caller keeps it; the 5·10⁶-triangle mesh's arrays are
+    // 114 MiB).
+    _ = consume scene
     let compileSeconds = clock.lap()
     let rendered = repeatedly(
       output.request.repeats, progress: progress, clock: &clock,

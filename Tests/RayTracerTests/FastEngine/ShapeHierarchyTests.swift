@@ -164,7 +164,43 @@ final class ShapeHierarchyTests: XCTestCase {
         center: Vector3(0, 100, 12), direction: Vector3(0, -1, 0),
         up: Vector3(0, 0, -1), angle: 1))
     let depth = Renderer.render(
-      CompiledScene<StableKernel<Double>>(down), settings: settings).depth
+      CompiledScene<StableKernel<Double>>(down), settings: settings
+    ).depth
     XCTAssertEqual(depth[0], 105, accuracy: 1e-9)
+  }
+
+  /// Spheres drawn by the screen tiles and shapes of one's own in one
+  /// scene: the tiles' pixel loop still asks the shapes (a shortcut for
+  /// scenes of spheres and planes once skipped them). The same bits as
+  /// without tiles.
+  func testShapesAmongProjectedSpheres_AreDrawn() throws {
+    let (spheres, shapes) = try scenes(count: 40)
+    var mixed = spheres
+    mixed.root = Group(
+      spheres.root.objects + Array(shapes.root.objects.prefix(20)) + [
+        .plane(Plane(normal: Vector3(0, 1, 0), offset: -7))
+      ])
+    let settings = RenderSettings(
+      width: 64, height: 48, outputs: [.depth, .normals], style: .course,
+      threads: 1)
+    let tiled = CompiledScene<StableKernel<Double>>(
+      mixed, projectionThreshold: 0)
+    let plain = CompiledScene<StableKernel<Double>>(mixed)
+    let (got, search, _) = Renderer.renderReportingSearch(
+      tiled, settings: settings)
+    let (want, plainSearch, _) = Renderer.renderReportingSearch(
+      plain, settings: settings)
+    XCTAssertEqual(search, .screenTiles)
+    XCTAssertNotEqual(plainSearch, .screenTiles)
+    func differing<T: Equatable>(_ a: [T], _ b: [T]) -> Int {
+      zip(a, b).count { $0 != $1 } + abs(a.count - b.count)
+    }
+    XCTAssertEqual(differing(got.depth, want.depth), 0, "depth pixels")
+    XCTAssertEqual(differing(got.normals, want.normals), 0, "normal pixels")
+    // The shapes show: without them the image differs.
+    mixed.root.objects.removeAll { if case .shape = $0 { true } else { false } }
+    let bare = Renderer.render(
+      CompiledScene<StableKernel<Double>>(mixed), settings: settings)
+    XCTAssertGreaterThan(differing(bare.depth, want.depth), 0)
   }
 }
