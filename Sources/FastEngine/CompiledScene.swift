@@ -162,7 +162,9 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       as: Scalar.self)
     rayOrigin = Kernel.frameOrigin(eye: eyeDouble)
     let (sphereList, planeList) = (all.spheres, all.planes)
-    spheres = Self.map(sphereList) { Kernel.makeSphere($0, eye: eyeDouble) }
+    spheres = Self.map(sphereList, threads: threads) {
+      Kernel.makeSphere($0, eye: eyeDouble)
+    }
     sphereMaterials = sphereList.map {
       Int32(truncatingIfNeeded: $0.materialIndex)
     }
@@ -204,19 +206,23 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       spheres: spheres, kernel: Kernel.self, rayOrigin: rayOrigin,
       threads: threads)
     let (unordered, unorderedMaterials) = (spheres, sphereMaterials)
-    spheres = Self.map(bvh.order) { unordered[Int($0)] }
-    sphereMaterials = Self.map(bvh.order) { unorderedMaterials[Int($0)] }
+    spheres = Self.map(bvh.order, threads: threads) { unordered[Int($0)] }
+    sphereMaterials = Self.map(bvh.order, threads: threads) {
+      unorderedMaterials[Int($0)]
+    }
     hierarchy = bvh
     wideHierarchy = WideHierarchy(bvh, rayOrigin: rayOrigin)
     projectsSpheres = false
   }
 
-  /// `transform` of each element in order, on two threads from 2¹⁶
-  /// elements: the sphere records of the largest scenes.
+  /// `transform` of each element in order, on up to `threads` threads
+  /// from 2¹⁶ elements: the sphere records of the largest scenes, a large
+  /// mesh's vertices.
   static func map<Element, Result>(
-    _ elements: [Element], _ transform: (Element) -> Result
+    _ elements: [Element], threads: Int, _ transform: (Element) -> Result
   ) -> [Result] {
-    let parts = elements.count >= 1 << 16 ? 2 : 1
+    let parts = Parallel.parts(
+      elements.count, threads: threads, from: 1 << 16, minimum: 1 << 15)
     return Array(unsafeUninitializedCapacity: elements.count) {
       results, initialized in
       Memory.adviseHugePages(UnsafeMutableRawBufferPointer(results))
@@ -352,7 +358,8 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       let coordinate = shapeHit(shape, ray)?.textureCoordinate
     {
       var material = surfaces[index]
-      material.diffuse = texture.color(at: TextureCoordinate<Scalar>(coordinate))
+      material.diffuse = texture.color(
+        at: TextureCoordinate<Scalar>(coordinate))
       return material.shade(
         point: point, normal: normal, viewDirection: ray.direction,
         ambient: ambient, lights: lights, attenuate: attenuate)

@@ -54,6 +54,24 @@ struct TriangleSources: Sendable {
     count += 1
   }
 
+  /// Appends compiled triangles made from the faces `faces` in order but
+  /// those of `leftOut` (increasing, within `faces`): a part of a mesh
+  /// compiled on a thread of its own.
+  mutating func append(faces: Range<Int>, leavingOut leftOut: [Int]) {
+    if followsFaces && leftOut.isEmpty && faces.lowerBound == count {
+      count += faces.count
+      return
+    }
+    var next = 0
+    for face in faces {
+      if next < leftOut.count && leftOut[next] == face {
+        next += 1
+      } else {
+        append(face: face)
+      }
+    }
+  }
+
   /// Stores the face numbers so far, k for triangle k.
   private mutating func storeNumbers() {
     numbers = (0..<count).map { Int32(truncatingIfNeeded: $0) }

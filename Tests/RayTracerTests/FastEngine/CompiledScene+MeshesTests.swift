@@ -117,4 +117,107 @@ final class CompiledSceneMeshesTests: XCTestCase {
     let float = CompiledScene<StableKernel<Float>>(scene)
     XCTAssertEqual(float.vertexNormals, smoothed.normals.map { .init($0) })
   }
+
+  /// A mesh compiled in parts on several threads is the mesh compiled on
+  /// one: the same records, texture coordinates, materials, normals, exact
+  /// planes and large triangles, in the same order, with degenerate, thin
+  /// and large faces in every part.
+  func testParts_AsOneThread() throws {
+    var random = SplitMix64(seed: 38)
+    func next() -> Double { Double(random.next() >> 11) * 0x1p-53 }
+    var mesh = TriangleMesh<Double>()
+    for index in 0..<40_000 {
+      let a = Vector3(4 * next() - 2, 4 * next() - 2, 2 * next() - 1)
+      var (b, c) = (
+        a + Vector3(0.1 * next(), 0.1 * next(), 0),
+        a + Vector3(0, 0.1 * next(), 0.1 * next())
+      )
+      if index % 97 == 3 {
+        (b, c) = (a, a + Vector3(1, 1, 1))  // degenerate
+      } else if index % 211 == 7 {
+        (b, c) = (a + Vector3(1, 0, 0), a + Vector3(0.5, 1e-7, 0))  // thin
+      }
+      var triangle = Triangle(a, b, c, materialIndex: index % 3)
+      if index % 1009 == 11 {  // large beside its distance from the eye
+        triangle = Triangle(
+          Vector3(-1e6, -0.5, 4), Vector3(1e6, -0.5, 4),
+          Vector3(0, -0.5, -1e6), materialIndex: 1)
+      }
+      if index % 2 == 0 {
+        triangle.vertexNormals = .init(
+          Vector3(0, 0, 1), Vector3(0, next(), 1), Vector3(next(), 0, 1))
+      }
+      if index % 3 != 1 {
+        triangle.textureCoordinates = .init(
+          TextureCoordinate(next(), next()), TextureCoordinate(0, 1),
+          TextureCoordinate(1, next()))
+      }
+      mesh.append(triangle)
+    }
+    let camera = try XCTUnwrap(
+      PerspectiveCamera<Double>(
+        center: Vector3(0, 0, 5), direction: Vector3(0, 0, -1),
+        up: Vector3(0, 1, 0), angle: 30))
+    let scene = Scene(
+      camera: camera, materials: Array(repeating: .defaultWhite, count: 3),
+      root: Group([.mesh(mesh)]))
+    let texture = Texture(
+      image: Image8(width: 1, height: 1, bytes: [255, 128, 0]))
+    func compiled(_ threads: Int, textured: Bool = true)
+      -> CompiledScene<StableKernel<Double>>
+    {
+      CompiledScene(
+        scene, textures: textured ? [texture, nil, nil] : [],
+        triangleProjectionThreshold: 0, threads: threads)
+    }
+    // Untextured, no part writes texture coordinates.
+    let untextured = (
+      compiled(1, textured: false), compiled(4, textured: false)
+    )
+    XCTAssertEqual(untextured.0.triangleCount, untextured.1.triangleCount)
+    XCTAssertTrue(untextured.1.triangleTextureCoordinates.isEmpty)
+    let one = compiled(1)
+    XCTAssertLessThan(one.ordinaryTriangleCount, one.triangleCount)
+    XCTAssertLessThan(one.triangleCount, mesh.count)
+    XCTAssertFalse(one.exactPlanes.isEmpty)
+    XCTAssertFalse(one.triangleSources.followsFaces)
+    // Exactly the ordinary triangles that need an exact plane have one.
+    XCTAssertEqual(one.exactPlaneIndices.count, one.triangleCount)
+    for index in 0..<one.ordinaryTriangleCount {
+      let record = one.triangles[index]
+      XCTAssertEqual(
+        one.exactPlaneIndices[index] >= 0,
+        TrianglePlane.needsExactT(relative: (record.v0, record.v1, record.v2)),
+        "\(index)")
+    }
+    for threads in [2, 3, 5] {
+      let parts = compiled(threads)
+      XCTAssertEqual(parts.triangleCount, one.triangleCount)
+      XCTAssertEqual(parts.ordinaryTriangleCount, one.ordinaryTriangleCount)
+      XCTAssertEqual(parts.exactPlaneIndices, one.exactPlaneIndices)
+      XCTAssertEqual(parts.exactPlanes.count, one.exactPlanes.count)
+      for (p, q) in zip(parts.exactPlanes, one.exactPlanes) {
+        XCTAssertEqual(p.normal, q.normal)
+        XCTAssertEqual(p.distance, q.distance)
+      }
+      XCTAssertEqual(parts.trianglePlanes.count, one.trianglePlanes.count)
+      for (p, q) in zip(parts.trianglePlanes, one.trianglePlanes) {
+        XCTAssertEqual(p.plane.normal, q.plane.normal)
+        XCTAssertEqual(p.plane.distance, q.plane.distance)
+      }
+      XCTAssertEqual(
+        parts.triangleTextureCoordinates, one.triangleTextureCoordinates)
+      for index in 0..<one.triangleCount {
+        let (p, q) = (parts.triangles[index], one.triangles[index])
+        guard p.v0 == q.v0, p.v1 == q.v1, p.v2 == q.v2,
+          parts.materialIndex(of: .triangle(index))
+            == one.materialIndex(of: .triangle(index)),
+          parts.vertexNormals(ofTriangle: index)
+            == one.vertexNormals(ofTriangle: index)
+        else {
+          return XCTFail("triangle \(index) differs on \(threads) threads")
+        }
+      }
+    }
+  }
 }
