@@ -129,7 +129,8 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     // Objects the common scale cannot hold are traced at their own, each
     // group a scene of its own (`layers`).
     let split = LengthScale.layers(
-      scene.root.flattened(), eye: scene.camera.center, as: Scalar.self)
+      scene.root.flattened(), eye: scene.camera.center, as: Scalar.self,
+      threads: threads)
     self.init(
       scene, split.main, exponent: split.exponent, textures: textures,
       hierarchyThreshold: hierarchyThreshold,

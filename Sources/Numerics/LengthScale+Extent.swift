@@ -26,11 +26,29 @@ extension LengthScale {
     /// in its own space is that far from its centre, in radii.
     var reachInAxes = 0.0
 
+    /// Threads that measure a large mesh, each a part of its triangles.
+    let threads: Int
+
     /// Nothing measured yet: the eye's own coordinates are not a length
     /// of the scene (see `LengthScale`).
-    init(eye: Vector3<Double>) {
+    init(eye: Vector3<Double>, threads: Int = 1) {
       self.eye = eye
+      self.threads = threads
       largest = 0
+    }
+
+    /// What `other` measured, added: the largest of the largest, the
+    /// smallest of the minima. Each fold starts from 0 and ∞ and never
+    /// takes a NaN in (`max` and `min` keep their first argument then),
+    /// so folding in parts and merging gives the sequential fold's values.
+    mutating func merge(_ other: Extent) {
+      largest = Swift.max(largest, other.largest)
+      radiusSquared = Swift.min(radiusSquared, other.radiusSquared)
+      edgeSquared = Swift.min(edgeSquared, other.edgeSquared)
+      edgeSquaredReach = Swift.min(edgeSquaredReach, other.edgeSquaredReach)
+      axisSquared = Swift.min(axisSquared, other.axisSquared)
+      planeDistance = Swift.min(planeDistance, other.planeDistance)
+      reachInAxes = Swift.max(reachInAxes, other.reachInAxes)
     }
 
     mutating func measure(_ object: SceneObject<Double>) {
@@ -82,9 +100,24 @@ extension LengthScale {
       radiusSquared = Swift.min(radiusSquared, sphere.radius * sphere.radius)
     }
 
-    /// Every triangle of `mesh`, by its vertices alone.
+    /// Every triangle of `mesh`, by its vertices alone; a large mesh in
+    /// parts, one per thread, merged.
     mutating func add(_ mesh: TriangleMesh<Double>) {
-      for index in mesh.indices { add(mesh.vertices(at: index)) }
+      let parts = Parallel.parts(
+        mesh.count, threads: threads, from: 1 << 16, minimum: 1 << 15)
+      guard parts > 1 else {
+        for index in mesh.indices { add(mesh.vertices(at: index)) }
+        return
+      }
+      var measured = [Extent](repeating: Extent(eye: eye), count: parts)
+      measured.withUnsafeMutableBufferPointer { measured in
+        Parallel.inParts(mesh.count, parts) { part, range in
+          var extent = Extent(eye: eye)
+          for index in range { extent.add(mesh.vertices(at: index)) }
+          measured[part] = extent
+        }
+      }
+      for extent in measured { merge(extent) }
     }
 
     mutating func add(_ triangle: Triangle<Double>) {

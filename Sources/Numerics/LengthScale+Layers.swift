@@ -27,13 +27,14 @@ extension LengthScale {
 
   /// `all` split into layers for a render in `S` seen from `eye`: one pass
   /// over the primitives for every scene whose objects all fit its common
-  /// scale, a second only when one does not.
+  /// scale, a second only when one does not. A large mesh is measured by
+  /// up to `threads` threads, with the same result.
   @usableFromInline
   package static func layers<S: RayScalar>(
     _ all: consuming Primitives<Double>, eye: Vector3<Double>,
-    as _: S.Type
+    as _: S.Type, threads: Int = 1
   ) -> Layers {
-    var extent = Extent(eye: eye)
+    var extent = Extent(eye: eye, threads: threads)
     extent.add(all)
     let exponent = self.exponent(extent.largest, as: S.self)
     let scale = factor(-exponent)

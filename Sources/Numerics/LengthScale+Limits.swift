@@ -25,18 +25,19 @@ extension LengthScale {
   /// a speck of 1e-300 (double), is judged as the same scene with the eye
   /// at the origin (`frame` moves such scenes to the eye before scaling).
   ///
-  /// What would hold the scene is `precision.remedy`.
+  /// What would hold the scene is `precision.remedy`. A large mesh is
+  /// measured by up to `threads` threads, with the same result.
   @usableFromInline
-  package static func problem(_ scene: Scene, precision: Precision)
-    -> String?
-  {
+  package static func problem(
+    _ scene: Scene, precision: Precision, threads: Int = 1
+  ) -> String? {
     let scale: (Double) -> Double = {
       switch precision {
       case .float: factor(-exponent($0, as: Float.self))
       case .double: factor(-exponent($0, as: Double.self))
       }
     }
-    var extent = Extent(eye: scene.camera.center)
+    var extent = Extent(eye: scene.camera.center, threads: threads)
     extent.measure(.group(scene.root))
     if let failure = firstFailure(
       in: scene, extent, smallest: precision.smallestNormal,

@@ -254,7 +254,9 @@ struct Render: ParsableCommand {
     let usesCourse = plan.request.engine == .course || check
     let precision = plan.request.fast.precision
     let problem: (String, Remedy?)? =
-      LengthScale.problem(scene, precision: precision).map {
+      LengthScale.problem(
+        scene, precision: precision, threads: plan.settings.threads
+      ).map {
         ($0, precision.remedy)
       }
       ?? (usesCourse
