@@ -1,4 +1,3 @@
-import Foundation
 import Geometry
 import SceneDescription
 
@@ -20,39 +19,38 @@ public enum CourseEngine {
     progress: (@Sendable (Int) -> Void)? = nil
   ) -> RenderBuffers<Double> {
     let view = View(scene, textures: textures, settings: settings)
-    let (width, height) = (settings.width, settings.height)
+    let width = settings.width
     let outputs = settings.outputs
-    let image = Image(width: width, height: height, outputs: outputs)
-    RowBatches.forEach(
-      rows: height, threads: settings.threads, progress: progress
-    ) { rows in
+    // Each thread writes its rows' pixels in place (`RenderBuffers.written`).
+    return RenderBuffers.written(
+      width: width, height: settings.height, outputs: outputs,
+      threads: settings.threads, progress: progress
+    ) { rows, pixels in
       for row in rows {
-        var pixels = Image.Row()
         for column in 0..<width {
+          let pixel = row * width + column
           if settings.supersamplesAll {  // every output the samples' mean
-            pixels.append(view.supersampled(column: column, row: row), outputs)
+            pixels.store(view.supersampled(column: column, row: row), at: pixel)
             continue
           }
           // The ray through the pixel's centre, and what it hits first.
           let ray = view.ray(column: column, row: row)
           let hit = view.world.intersect(ray, after: 0, before: .infinity)
           if outputs.contains(.depth) {
-            pixels.depth.append(hit?.t ?? .infinity)
+            pixels.depth[pixel] = hit?.t ?? .infinity
           }
           if outputs.contains(.normals) {
-            pixels.normals.append(hit?.normal ?? .zero)
+            pixels.normals[pixel] = hit?.normal ?? .zero
           }
           if outputs.contains(.shaded) {
-            pixels.color.append(
+            pixels.color[pixel] =
               settings.supersamples
-                ? view.supersampled(column: column, row: row).color
-                : view.color(ray, hit))
+              ? view.supersampled(column: column, row: row).color
+              : view.color(ray, hit)
           }
         }
-        image.store(pixels, at: row)
       }
     }
-    return image.buffers()
   }
 }
 
@@ -130,52 +128,5 @@ struct View: Sendable {
     let count = Double(samples.count)
     sum.depth = hits > 0 ? sum.depth / Double(hits) : .infinity
     return (sum.depth, sum.normal / count, sum.color / count)
-  }
-}
-
-/// The image being rendered, row by row: each row is computed on its own,
-/// then stored under a lock, so threads never write the same memory.
-private final class Image: @unchecked Sendable {
-  struct Row {
-    var depth: [Double] = []
-    var normals: [Vector3<Double>] = []
-    var color: [RGB<Double>] = []
-    mutating func append(_ pixel: View.Pixel, _ outputs: RenderOutputs) {
-      if outputs.contains(.depth) { depth.append(pixel.depth) }
-      if outputs.contains(.normals) { normals.append(pixel.normal) }
-      if outputs.contains(.shaded) { color.append(pixel.color) }
-    }
-  }
-
-  private let lock = NSLock()
-  private var image: RenderBuffers<Double>
-
-  init(width: Int, height: Int, outputs: RenderOutputs) {
-    func buffer<T>(_ output: RenderOutputs, _ zero: T) -> [T] {
-      outputs.contains(output)
-        ? Array(repeating: zero, count: width * height)
-        : []
-    }
-    image = RenderBuffers(
-      width: width, height: height, depth: buffer(.depth, 0),
-      normals: buffer(.normals, .zero), color: buffer(.shaded, .zero))
-  }
-
-  func store(_ row: Row, at index: Int) {
-    let pixels = index * image.width..<(index + 1) * image.width
-    lock.lock()
-    defer { lock.unlock() }
-    func put<T>(_ values: [T], in buffer: inout [T]) {
-      if !buffer.isEmpty { buffer.replaceSubrange(pixels, with: values) }
-    }
-    put(row.depth, in: &image.depth)
-    put(row.normals, in: &image.normals)
-    put(row.color, in: &image.color)
-  }
-
-  func buffers() -> RenderBuffers<Double> {
-    lock.lock()
-    defer { lock.unlock() }
-    return image
   }
 }
