@@ -95,7 +95,8 @@ enum MeshLoader {
     // (`TriangleMesh`).
     let hasTextureCoordinates = mesh.hasTextureCoordinates
     let triangles = TriangleMesh(
-      consume mesh, materialIndex: materialIndex, normals: normals)
+      consume mesh, materialIndex: materialIndex, normals: normals,
+      threads: threads)
     return Loaded(
       object: .mesh(triangles), hasTextureCoordinates: hasTextureCoordinates)
   }

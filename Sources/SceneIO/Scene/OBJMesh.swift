@@ -166,29 +166,46 @@ package struct OBJMesh: Sendable {
 
   /// The normal per vertex of `smoothed`, or nil when `smoothed` leaves
   /// the mesh as it is (it has `vn` lines, or no faces).
-  func smoothedNormals(_ rule: MeshNormals) -> [Vector3<Double>]? {
+  ///
+  /// A large mesh is summed by up to `threads` threads, each owning a
+  /// range of vertices: each reads every face in order and adds its normal
+  /// to the corners it owns, so every vertex's sum is added in the faces'
+  /// order, and the normals are the same bit for bit for any count.
+  func smoothedNormals(_ rule: MeshNormals, threads: Int = 1)
+    -> [Vector3<Double>]?
+  {
     guard normals.isEmpty, !vertexIndices.isEmpty else { return nil }
-    var sums = [Vector3<Double>](repeating: .zero, count: vertices.count)
-    for first in stride(from: 0, to: vertexIndices.count, by: 3) {
-      let (a, b, c) = (
-        Int(vertexIndices[first]), Int(vertexIndices[first + 1]),
-        Int(vertexIndices[first + 2])
-      )
-      let cross = (vertices[b] - vertices[a]).cross(vertices[c] - vertices[a])
-      guard cross.maxMagnitude > 0, cross.isFinite else { continue }
-      let weighted = rule == .unitMean ? cross.normalized() : cross
-      sums[a] += weighted
-      sums[b] += weighted
-      sums[c] += weighted
+    let parts = Parallel.parts(
+      vertices.count, threads: threads, from: 1 << 16, minimum: 1 << 14)
+    return [Vector3<Double>](unsafeUninitializedCapacity: vertices.count) {
+      sums, count in
+      Parallel.inParts(vertices.count, parts) { _, owned in
+        let sums = sums.baseAddress!
+        (sums + owned.lowerBound).initialize(
+          repeating: .zero, count: owned.count)
+        for first in stride(from: 0, to: vertexIndices.count, by: 3) {
+          let (a, b, c) = (
+            Int(vertexIndices[first]), Int(vertexIndices[first + 1]),
+            Int(vertexIndices[first + 2])
+          )
+          let adds = (owned ~= a, owned ~= b, owned ~= c)
+          guard adds.0 || adds.1 || adds.2 else { continue }
+          let cross = (vertices[b] - vertices[a]).cross(
+            vertices[c] - vertices[a])
+          guard cross.maxMagnitude > 0, cross.isFinite else { continue }
+          let weighted = rule == .unitMean ? cross.normalized() : cross
+          if adds.0 { sums[a] += weighted }
+          if adds.1 { sums[b] += weighted }
+          if adds.2 { sums[c] += weighted }
+        }
+        for index in owned {
+          let sum = sums[index]
+          sums[index] =
+            sum.maxMagnitude > 0 && sum.isFinite ? sum.normalized() : .zero
+        }
+      }
+      count = vertices.count
     }
-    // In place: a second array of a normal per vertex would be fresh
-    // memory, whose page faults cost more than the arithmetic.
-    for index in sums.indices {
-      let sum = sums[index]
-      sums[index] =
-        sum.maxMagnitude > 0 && sum.isFinite ? sum.normalized() : .zero
-    }
-    return sums
   }
 
   /// The course loader's reading of `a/b` faces in a file that has both

@@ -146,4 +146,30 @@ final class OBJMeshTests: XCTestCase {
       mesh.vertexIndices.withUnsafeBufferPointer { $0.baseAddress },
       obj.vertexIndices.withUnsafeBufferPointer { $0.baseAddress })
   }
+
+  /// Normals summed by several threads, each owning a range of vertices,
+  /// are those of one thread bit for bit (each vertex's sum in the faces'
+  /// order), with faces that span the ranges, repeat a corner, or are
+  /// degenerate.
+  func testSmoothedNormals_SameOnAnyThreads() {
+    var random = SplitMix64(seed: 5)
+    func next() -> Double { Double(random.next() >> 11) * 0x1p-53 }
+    let count = 70_000
+    let vertices = (0..<count).map { _ in Vector3(next(), next(), next()) }
+    let triangles = (0..<2 * count).map { face -> OBJTriangle in
+      func corner() -> Int32 { Int32(random.next() % UInt64(count)) }
+      let a = corner()
+      return OBJTriangle(
+        vertexIndices: SIMD3(a, face % 11 == 0 ? a : corner(), corner()))
+    }
+    let mesh = OBJMesh(vertices: vertices, triangles: triangles)
+    for rule in [MeshNormals.unitMean, .areaWeighted] {
+      let one = mesh.smoothedNormals(rule, threads: 1)
+      XCTAssertNotNil(one)
+      for threads in [2, 3, 4] {
+        let parts = mesh.smoothedNormals(rule, threads: threads)
+        XCTAssertTrue(one == parts, "\(rule) on \(threads) threads")
+      }
+    }
+  }
 }
