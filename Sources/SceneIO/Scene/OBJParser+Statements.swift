@@ -37,6 +37,7 @@ extension OBJParser {
 
   /// `v x y z`, `v x y z w` or `v x y z r g b`.
   mutating func vertex(_ keyword: Token) throws(SceneError) {
+    if readsPlainLines && plainVertex() { return }
     guard mesh.vertices.count < Int(Int32.max) else {
       throw error(
         at: keyword, "too many vertices: at most \(Int32.max) are supported")
@@ -100,6 +101,7 @@ extension OBJParser {
   /// `f` and three or more vertex references, fanned into triangles as they
   /// are read.
   mutating func face(_ keyword: Token) throws(SceneError) {
+    if readsPlainLines && plainFace() { return }
     var count = 0
     var first:
       (token: Token, vertex: Int32, normal: Int32, texture: Int32, form: Form)?

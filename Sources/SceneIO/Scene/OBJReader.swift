@@ -126,6 +126,10 @@ struct OBJParser {
   /// In a speculative half, per kind of element, how many must come before
   /// it for every index read to be valid.
   var needed = (vertices: 0, normals: 0, textureCoordinates: 0)
+  /// Whether plain vertex and face lines are read in one pass
+  /// (`plainVertex`, `plainFace`); tests turn it off to compare the mesh
+  /// and the messages with the token-by-token reading's.
+  var readsPlainLines = true
 
   /// The statements that name, group or decorate geometry without changing
   /// it, and are skipped with their arguments.
