@@ -24,10 +24,12 @@ extension CompiledScene {
   ) -> [LargeTriangle] {
     let cameraRelative = Kernel.frameOrigin(eye: eye) == .zero
     var large: [LargeTriangle] = []
+    // The tables beside the records that grow to a triangle each are
+    // allocated whole once needed: grown by doubling after every record is
+    // written, a copy of each had stood beside the full records (62 MiB of
+    // a 5·10⁶-triangle render's peak).
+    triangleSources.expect(list.count)
     for mesh in list.parts {
-      let framed = Self.map(mesh.vertices, threads: threads) {
-        Self.frame($0, eye: eye, cameraRelative: cameraRelative)
-      }
       let normalBase = vertexNormals.count
       triangleSources.add(mesh, normalBase: normalBase)
       if mesh.normalsFollowVertices || !mesh.normalIndices.isEmpty {
@@ -41,14 +43,20 @@ extension CompiledScene {
           vertexNormals += mesh.normals.map { Vector3<Scalar>($0) }
         }
       }
-      let compiled = MeshCompile(
-        mesh: mesh, framed: framed, eye: eye, cameraRelative: cameraRelative,
-        firstFace: triangleSources.face(0), textured: !textures.isEmpty)
+      let firstFace = triangleSources.face(0)
       let parts = Parallel.parts(
         mesh.count, threads: threads, from: 1 << 14, minimum: 1 << 13)
-      append(
-        compiled.run(parts: parts), firstFace: compiled.firstFace, large: &large
-      )
+      // The vertices in the kernel's frame live as long as the compile of
+      // the parts: freed before the join, whose tables take their place.
+      let compiled = MeshCompile(
+        mesh: mesh,
+        framed: Self.map(mesh.vertices, threads: threads) {
+          Self.frame($0, eye: eye, cameraRelative: cameraRelative)
+        },
+        eye: eye, cameraRelative: cameraRelative, firstFace: firstFace,
+        textured: !textures.isEmpty
+      ).run(parts: parts)
+      append(compiled, firstFace: firstFace, large: &large)
     }
     return large
   }
@@ -77,7 +85,8 @@ extension CompiledScene {
       // One entry per ordinary triangle from the first that needs a plane.
       if !part.exact.isEmpty || !exactPlaneIndices.isEmpty {
         if exactPlaneIndices.isEmpty {
-          exactPlaneIndices = Array(repeating: -1, count: ordinal)
+          exactPlaneIndices.reserveCapacity(triangleSources.expected)
+          exactPlaneIndices += repeatElement(-1, count: ordinal)
         }
         exactPlaneIndices += repeatElement(-1, count: part.count)
         for (offset, plane) in part.exact {

@@ -27,6 +27,9 @@ struct TriangleSources: Sendable {
   private var numbers: [Int32] = []
   /// Compiled triangles so far.
   private(set) var count = 0
+  /// How many the compile expects at most: the room face numbers, once
+  /// stored, are given at once.
+  private(set) var expected = 0
 
   /// Whether compiled triangle k is face k for every k: no face numbers
   /// are stored.
@@ -72,9 +75,14 @@ struct TriangleSources: Sendable {
     }
   }
 
-  /// Stores the face numbers so far, k for triangle k.
+  /// Expects at most `total` compiled triangles in all.
+  mutating func expect(_ total: Int) { expected = total }
+
+  /// Stores the face numbers so far, k for triangle k, with room for the
+  /// triangles expected.
   private mutating func storeNumbers() {
-    numbers = (0..<count).map { Int32(truncatingIfNeeded: $0) }
+    numbers.reserveCapacity(Swift.max(expected, count))
+    numbers += (0..<count).lazy.map { Int32(truncatingIfNeeded: $0) }
     followsFaces = false
   }
 
