@@ -129,7 +129,8 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     // Objects the common scale cannot hold are traced at their own, each
     // group a scene of its own (`layers`).
     let split = LengthScale.layers(
-      scene.root.flattened(), eye: scene.camera.center, as: Scalar.self,
+      scene.root.flattened(threads: threads), eye: scene.camera.center,
+      as: Scalar.self,
       threads: threads)
     self.init(
       scene, split.main, exponent: split.exponent, textures: textures,
@@ -166,7 +167,7 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     spheres = Self.map(sphereList, threads: threads) {
       Kernel.makeSphere($0, eye: eyeDouble)
     }
-    sphereMaterials = sphereList.map {
+    sphereMaterials = Self.map(sphereList, threads: threads) {
       Int32(truncatingIfNeeded: $0.materialIndex)
     }
     planes = planeList.map { Kernel.makePlane($0, eye: eyeDouble) }

@@ -62,11 +62,13 @@ extension LengthScale {
         // (`SceneObject.sphere`): 10⁶ spheres 30 ms sooner.
         group.objects.withUnsafeBufferPointer { buffer in
           guard let children = buffer.baseAddress else { return }
-          for index in buffer.indices {
-            if let sphere = children[index].sphere {
-              add(sphere)
-            } else {
-              measure(children[index])
+          addInParts(buffer.count) { extent, range in
+            for index in range {
+              if let sphere = children[index].sphere {
+                extent.add(sphere)
+              } else {
+                extent.measure(children[index])
+              }
             }
           }
         }
@@ -77,7 +79,11 @@ extension LengthScale {
 
     /// Every primitive of `all`.
     mutating func add(_ all: Primitives<Double>) {
-      for sphere in all.spheres { add(sphere) }
+      all.spheres.withUnsafeBufferPointer { spheres in
+        addInParts(spheres.count) { extent, range in
+          for index in range { extent.add(spheres[index]) }
+        }
+      }
       for plane in all.planes { add(plane) }
       for mesh in all.triangles.parts { add(mesh) }
       for ellipsoid in all.transformedSpheres {
@@ -100,21 +106,25 @@ extension LengthScale {
       radiusSquared = Swift.min(radiusSquared, sphere.radius * sphere.radius)
     }
 
-    /// Every triangle of `mesh`, by its vertices alone; a large mesh in
-    /// parts, one per thread, merged.
+    /// Every triangle of `mesh`, by its vertices alone.
     mutating func add(_ mesh: TriangleMesh<Double>) {
-      let parts = Parallel.parts(
-        mesh.count, threads: threads, from: 1 << 16, minimum: 1 << 15)
-      guard parts > 1 else {
-        for index in mesh.indices { add(mesh.vertices(at: index)) }
-        return
+      addInParts(mesh.count) { extent, range in
+        for index in range { extent.add(mesh.vertices(at: index)) }
       }
+    }
+
+    /// `measure` of the items 0..<`count`: from 2¹⁶ items in parts, one
+    /// per thread, each into an extent of its own, merged.
+    private mutating func addInParts(
+      _ count: Int, _ measure: (inout Extent, Range<Int>) -> Void
+    ) {
+      let parts = Parallel.parts(
+        count, threads: threads, from: 1 << 16, minimum: 1 << 15)
+      guard parts > 1 else { return measure(&self, 0..<count) }
       var measured = [Extent](repeating: Extent(eye: eye), count: parts)
       measured.withUnsafeMutableBufferPointer { measured in
-        Parallel.inParts(mesh.count, parts) { part, range in
-          var extent = Extent(eye: eye)
-          for index in range { extent.add(mesh.vertices(at: index)) }
-          measured[part] = extent
+        Parallel.inParts(count, parts) { part, range in
+          measure(&measured[part], range)
         }
       }
       for extent in measured { merge(extent) }

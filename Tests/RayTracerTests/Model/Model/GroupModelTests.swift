@@ -167,6 +167,51 @@ final class GroupModelTests: XCTestCase {
       SceneObject.group(Group([.sphere(sphere)])).intersect(
         ray, after: 0, before: .infinity)?.t, 8)
   }
+
+  /// A large group flattened by several threads (its own spheres read in
+  /// parts) is the group flattened by one, with planes, meshes and
+  /// transformed spheres among the spheres; and a nested group of spheres
+  /// among them keeps its place (the walk in order).
+  func testFlattened_InPartsAsInOrder() throws {
+    var random = SplitMix64(seed: 9)
+    func next() -> Double { Double(random.next() >> 11) * 0x1p-53 }
+    var objects: [SceneObject<Double>] = []
+    for index in 0..<70_000 {
+      objects.append(
+        .sphere(
+          Sphere(
+            center: Vector3(next(), next(), next()), radius: next() + 0.1,
+            materialIndex: index % 5)))
+      if index % 9_999 == 0 {
+        objects.append(
+          .plane(Plane(normal: Vector3(0, 1, 0), offset: next())))
+        objects.append(
+          .triangle(
+            Triangle(Vector3(0, 0, 0), Vector3(1, 0, 0), Vector3(0, 1, 0))))
+      }
+    }
+    func same(_ group: Group<Double>, _ note: String) {
+      let (one, parts) = (group.flattened(), group.flattened(threads: 3))
+      XCTAssertEqual(one.spheres, parts.spheres, note)
+      XCTAssertEqual(one.planes, parts.planes, note)
+      XCTAssertEqual(one.triangles.count, parts.triangles.count, note)
+      XCTAssertEqual(
+        one.transformedSpheres, parts.transformedSpheres, note)
+    }
+    same(Group(objects), "spheres, planes and triangles")
+    var nested = objects
+    nested.insert(
+      .group(Group([.sphere(Sphere(center: .zero, radius: 2))])), at: 30_000)
+    same(Group(nested), "a group of spheres among them")
+    var stretched = objects
+    let stretch = try XCTUnwrap(
+      Transform(
+        matrix: .scale(Vector3(1, 2, 3)),
+        object: .sphere(Sphere(center: .zero, radius: 1))))
+    stretched.insert(.transform(stretch), at: 50_000)
+    same(Group(stretched), "a stretched sphere among them")
+  }
+
 }
 
 extension SceneObject {
