@@ -19,10 +19,12 @@ enum OutputEncoding {
   /// The bytes of each file, in the order of `files`.
   static func encode<S: RayScalar>(
     _ buffers: RenderBuffers<S>, files: [OutputFile], style: ImageStyle,
-    depthRange: ClosedRange<Double>?, png: PNGOptions
+    depthRange: ClosedRange<Double>?, png: PNGOptions, threads: Int = 1
   ) -> [[UInt8]] {
     let jobs = files.map { file in
-      Job(file, buffers, style: style, depthRange: depthRange, png: png)
+      Job(
+        file, buffers, style: style, depthRange: depthRange, png: png,
+        threads: threads)
     }
     // Every job's parts, in file order.
     let parts = jobs.indices.flatMap { job in
@@ -54,17 +56,19 @@ enum OutputEncoding {
 
     init<S: RayScalar>(
       _ file: OutputFile, _ buffers: RenderBuffers<S>, style: ImageStyle,
-      depthRange: ClosedRange<Double>?, png: PNGOptions
+      depthRange: ClosedRange<Double>?, png: PNGOptions, threads: Int
     ) {
       guard file.format.isEightBit else {
         let (kind, format) = (file.kind, file.format)
+        // One part, converted by up to `threads` threads itself (PFM).
         self = .whole {
           if format == .pfm, kind != .depth,
-            let bytes = Self.encodePFMInPlace(kind, buffers)
+            let bytes = Self.encodePFMInPlace(kind, buffers, threads: threads)
           {
             return bytes
           }
-          return Self.encodeRaw(RenderJob.rawImage(kind, buffers), format)
+          return Self.encodeRaw(
+            RenderJob.rawImage(kind, buffers), format, threads: threads)
         }
         return
       }
@@ -117,7 +121,7 @@ enum OutputEncoding {
     /// Double at 1920×1080, at the peak of a large mesh's render); nil
     /// where a vector is not three values in a row.
     private static func encodePFMInPlace<S: RayScalar>(
-      _ kind: RenderOutputs, _ buffers: RenderBuffers<S>
+      _ kind: RenderOutputs, _ buffers: RenderBuffers<S>, threads: Int
     ) -> [UInt8]? {
       guard MemoryLayout<Vector3<S>>.stride == 3 * MemoryLayout<S>.stride
       else { return nil }
@@ -127,16 +131,18 @@ enum OutputEncoding {
           PFMEncoder.encode(
             width: buffers.width, height: buffers.height, channels: 3,
             values: UnsafeBufferPointer(
-              rebasing: values[..<(3 * vectors.count)]))
+              rebasing: values[..<(3 * vectors.count)]), threads: threads)
         }
       }
     }
 
     /// PFM is 32-bit by definition; NPY keeps the render's precision.
     private static func encodeRaw<S: RayScalar>(
-      _ image: RawImage<S>, _ format: ImageFormat
+      _ image: RawImage<S>, _ format: ImageFormat, threads: Int
     ) -> [UInt8] {
-      if format == .pfm { return PFMEncoder.encode(converting: image) }
+      if format == .pfm {
+        return PFMEncoder.encode(converting: image, threads: threads)
+      }
       return NPYEncoder.encode(image)
     }
   }

@@ -289,7 +289,7 @@ package enum RenderJob {
       : nil
     let encoded = OutputEncoding.encode(
       buffers, files: files, style: settings.style, depthRange: usedRange,
-      png: output.png)
+      png: output.png, threads: settings.threads)
     try output.batch.commit(encoded)
     var report = RenderReport(
       request: output.request, spheres: 0, planes: 0, sphereSearch: search,

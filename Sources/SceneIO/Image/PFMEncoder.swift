@@ -14,13 +14,13 @@ package enum PFMEncoder {
   /// The file of `image`'s values, each rounded to Float once as it is
   /// written (the same bytes as converting the image first, without the
   /// converted copy).
-  package static func encode<S: RayScalar>(converting image: RawImage<S>)
-    -> [UInt8]
-  {
+  package static func encode<S: RayScalar>(
+    converting image: RawImage<S>, threads: Int = 1
+  ) -> [UInt8] {
     image.values.withUnsafeBufferPointer {
       encode(
         width: image.width, height: image.height, channels: image.channels,
-        values: $0)
+        values: $0, threads: threads)
     }
   }
 
@@ -30,11 +30,13 @@ package enum PFMEncoder {
   /// of them in Double had been 47 MiB of a 1920×1080 render's peak.
   /// Specialised: called from another module, its generic form converted
   /// each value through the type's witnesses, a second for a 1920×1080
-  /// render's depth and normals.
+  /// render's depth and normals. A large image's rows are converted by up
+  /// to `threads` threads, each a band of rows (the same bytes).
   @_specialize(where S == Float)
   @_specialize(where S == Double)
   package static func encode<S: RayScalar>(
-    width: Int, height: Int, channels: Int, values: UnsafeBufferPointer<S>
+    width: Int, height: Int, channels: Int, values: UnsafeBufferPointer<S>,
+    threads: Int = 1
   ) -> [UInt8] {
     precondition(channels == 1 || channels == 3)
     precondition(values.count == width * height * channels)
@@ -42,17 +44,22 @@ package enum PFMEncoder {
     let header = Array("\(magic)\n\(width) \(height)\n-1.0\n".utf8)
     let rowLength = width * channels
     let count = header.count + 4 * values.count
+    let parts = Parallel.parts(
+      values.count, threads: threads, from: 1 << 18, minimum: 1 << 17)
     return [UInt8](unsafeUninitializedCapacity: count) { bytes, initialized in
       let raw = UnsafeMutableRawBufferPointer(bytes)
       raw.copyBytes(from: header)
-      var offset = header.count
-      for row in stride(from: height - 1, through: 0, by: -1) {
-        let start = row * rowLength
-        for value in values[start..<(start + rowLength)] {
-          raw.storeBytes(
-            of: Float(value).bitPattern.littleEndian, toByteOffset: offset,
-            as: UInt32.self)
-          offset += 4
+      // The file's k-th row is the image's row height − 1 − k.
+      Parallel.inParts(height, parts) { _, fileRows in
+        var offset = header.count + 4 * rowLength * fileRows.lowerBound
+        for fileRow in fileRows {
+          let start = (height - 1 - fileRow) * rowLength
+          for value in values[start..<(start + rowLength)] {
+            raw.storeBytes(
+              of: Float(value).bitPattern.littleEndian, toByteOffset: offset,
+              as: UInt32.self)
+            offset += 4
+          }
         }
       }
       initialized = count

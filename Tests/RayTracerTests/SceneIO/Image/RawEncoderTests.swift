@@ -104,4 +104,26 @@ final class RawEncoderTests: XCTestCase {
     XCTAssertNil(ImageFormat(path: "dir.png/out"))
     XCTAssertNil(ImageFormat(path: "noextension"))
   }
+
+  /// A large image's rows converted by several threads, each a band, are
+  /// the bytes one thread writes (bottom row first), in both channel counts.
+  func testPFM_InPartsAsOneThread() {
+    let (width, height) = (301, 457)
+    for channels in [1, 3] {
+      let values = (0..<(width * height * channels)).map {
+        Double($0 % 1_000) * 0.37 - Double($0 / 7_000)
+      }
+      values.withUnsafeBufferPointer { values in
+        let one = PFMEncoder.encode(
+          width: width, height: height, channels: channels, values: values)
+        for threads in [2, 3, 16] {
+          XCTAssertEqual(
+            PFMEncoder.encode(
+              width: width, height: height, channels: channels,
+              values: values, threads: threads),
+            one, "\(channels) channels, \(threads) threads")
+        }
+      }
+    }
+  }
 }
