@@ -20,10 +20,9 @@ public enum CourseEngine {
   ) -> RenderBuffers<Double> {
     let view = View(scene, textures: textures, settings: settings)
     let width = settings.width
-    let outputs = settings.outputs
-    // Each thread writes its rows' pixels in place (`RenderBuffers.written`).
+    // Each thread stores its rows' pixels in place.
     return RenderBuffers.written(
-      width: width, height: settings.height, outputs: outputs,
+      width: width, height: settings.height, outputs: settings.outputs,
       threads: settings.threads, progress: progress
     ) { rows, pixels in
       for row in rows {
@@ -36,18 +35,15 @@ public enum CourseEngine {
           // The ray through the pixel's centre, and what it hits first.
           let ray = view.ray(column: column, row: row)
           let hit = view.world.intersect(ray, after: 0, before: .infinity)
-          if outputs.contains(.depth) {
-            pixels.depth[pixel] = hit?.t ?? .infinity
-          }
-          if outputs.contains(.normals) {
-            pixels.normals[pixel] = hit?.normal ?? .zero
-          }
-          if outputs.contains(.shaded) {
-            pixels.color[pixel] =
-              settings.supersamples
+          let color =
+            !settings.outputs.contains(.shaded)
+            ? .zero
+            : settings.supersamples
               ? view.supersampled(column: column, row: row).color
               : view.color(ray, hit)
-          }
+          // Depth and normal: the hit's t and normal, ∞ and zero on a miss.
+          pixels.store(
+            (hit?.t ?? .infinity, hit?.normal ?? .zero, color), at: pixel)
         }
       }
     }
