@@ -24,10 +24,10 @@ extension CompiledScene {
   ) -> [LargeTriangle] {
     let cameraRelative = Kernel.frameOrigin(eye: eye) == .zero
     var large: [LargeTriangle] = []
-    // The tables beside the records that grow to a triangle each are
-    // allocated whole once needed: grown by doubling after every record is
-    // written, a copy of each had stood beside the full records (62 MiB of
-    // a 5·10⁶-triangle render's peak).
+    // The tables beside the records that grow to a triangle each (face
+    // numbers, exact-plane indices) get their room once when needed:
+    // grown by doubling after every record is written, each old copy
+    // stood for a moment beside the full records.
     triangleSources.expect(list.count)
     for mesh in list.parts {
       let normalBase = vertexNormals.count
