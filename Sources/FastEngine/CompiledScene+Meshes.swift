@@ -56,15 +56,17 @@ extension CompiledScene {
         eye: eye, cameraRelative: cameraRelative, firstFace: firstFace,
         textured: !textures.isEmpty
       ).run(parts: parts)
-      append(compiled, firstFace: firstFace, large: &large)
+      append(
+        compiled, firstFace: firstFace, triangles: list.count, large: &large)
     }
     return large
   }
 
   /// Appends one mesh's compiled parts, in order: records and texture
-  /// coordinates, face numbers, exact planes and large triangles.
+  /// coordinates, face numbers, exact planes and large triangles, of a
+  /// list of `triangles` in all.
   private mutating func append(
-    _ compiled: MeshCompile.Output, firstFace: Int,
+    _ compiled: MeshCompile.Output, firstFace: Int, triangles total: Int,
     large: inout [LargeTriangle]
   ) {
     let base = triangles.count
@@ -85,7 +87,7 @@ extension CompiledScene {
       // One entry per ordinary triangle from the first that needs a plane.
       if !part.exact.isEmpty || !exactPlaneIndices.isEmpty {
         if exactPlaneIndices.isEmpty {
-          exactPlaneIndices.reserveCapacity(triangleSources.expected)
+          exactPlaneIndices.reserveCapacity(total)
           exactPlaneIndices += repeatElement(-1, count: ordinal)
         }
         exactPlaneIndices += repeatElement(-1, count: part.count)

@@ -29,7 +29,7 @@ struct TriangleSources: Sendable {
   private(set) var count = 0
   /// How many the compile expects at most: the room face numbers, once
   /// stored, are given at once.
-  private(set) var expected = 0
+  private var expected = 0
 
   /// Whether compiled triangle k is face k for every k: no face numbers
   /// are stored.

@@ -26,7 +26,8 @@ extension LengthScale {
     /// in its own space is that far from its centre, in radii.
     var reachInAxes = 0.0
 
-    /// Threads that measure a large mesh, each a part of its triangles.
+    /// Threads that measure a long list (a mesh's triangles, a group's
+    /// entries, the spheres), each a part of it (`addInParts`).
     let threads: Int
 
     /// Nothing measured yet: the eye's own coordinates are not a length

@@ -27,8 +27,8 @@ extension LengthScale {
 
   /// `all` split into layers for a render in `S` seen from `eye`: one pass
   /// over the primitives for every scene whose objects all fit its common
-  /// scale, a second only when one does not. A large mesh is measured by
-  /// up to `threads` threads, with the same result.
+  /// scale, a second only when one does not. A large mesh or group is
+  /// measured by up to `threads` threads, with the same result.
   @usableFromInline
   package static func layers<S: RayScalar>(
     _ all: consuming Primitives<Double>, eye: Vector3<Double>,

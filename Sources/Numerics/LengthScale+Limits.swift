@@ -25,8 +25,8 @@ extension LengthScale {
   /// a speck of 1e-300 (double), is judged as the same scene with the eye
   /// at the origin (`frame` moves such scenes to the eye before scaling).
   ///
-  /// What would hold the scene is `precision.remedy`. A large mesh is
-  /// measured by up to `threads` threads, with the same result.
+  /// What would hold the scene is `precision.remedy`. A large mesh or
+  /// group is measured by up to `threads` threads, with the same result.
   @usableFromInline
   package static func problem(
     _ scene: Scene, precision: Precision, threads: Int = 1

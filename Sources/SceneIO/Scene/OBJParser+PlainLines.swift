@@ -6,13 +6,6 @@ import Geometry
 /// Token by token, a vertex had cost about 170 ns and a triangle 150 ns:
 /// most of a large mesh's parse.
 extension OBJParser {
-  /// Whether `byte` separates tokens on a line.
-  @inline(__always)
-  static func isBlank(_ byte: UInt8) -> Bool {
-    byte == UInt8(ascii: " ") || byte == UInt8(ascii: "\t")
-      || isOtherBlank(byte)
-  }
-
   /// `position` moved past blanks, to the next token, the line's end or
   /// the file's.
   @inline(__always)
@@ -45,6 +38,9 @@ extension OBJParser {
       guard tokenEnd > position,
         case .fast(let value, let stop) = DecimalParser.prefix(
           from: base + position, to: base + tokenEnd),
+        // Always held: the fast path's values lie within 10^±22 of 1
+        // or are 0, inside Float's normal range; checked as `number`
+        // checks, should that path ever widen.
         stop == base + tokenEnd, precision.holds(value)
       else { return false }
       switch k {

@@ -57,7 +57,7 @@ extension OBJParser {
   mutating func nextToken() -> Token? {
     while index < bytes.count {
       let byte = bytes[index]
-      if byte == UInt8(ascii: " ") || byte == UInt8(ascii: "\t") {
+      if Self.isBlank(byte) {
         index += 1
       } else if byte == UInt8(ascii: "\n") {
         return nil
@@ -66,8 +66,6 @@ extension OBJParser {
           index += 1
         }
         return nil
-      } else if Self.isOtherBlank(byte) {
-        index += 1
       } else if byte == UInt8(ascii: "\\"), let end = continuationEnd(index) {
         index = end
         newLine()
@@ -79,9 +77,7 @@ extension OBJParser {
     let start = index
     while index < bytes.count {
       let byte = bytes[index]
-      if byte == UInt8(ascii: " ") || byte == UInt8(ascii: "\n")
-        || byte == UInt8(ascii: "\t") || Self.isOtherBlank(byte)
-      {
+      if Self.isBlank(byte) || byte == UInt8(ascii: "\n") {
         break
       }
       if byte == UInt8(ascii: "\\") && continuationEnd(index) != nil { break }
@@ -90,6 +86,14 @@ extension OBJParser {
     let column = start - lineStart + 1
     lastEnd = (line, index - lineStart + 1)
     return Token(start: start, end: index, line: line, column: column)
+  }
+
+  /// Whether `byte` separates tokens on a line: a space, a tab or one of
+  /// `isOtherBlank`'s.
+  @inline(__always)
+  static func isBlank(_ byte: UInt8) -> Bool {
+    byte == UInt8(ascii: " ") || byte == UInt8(ascii: "\t")
+      || isOtherBlank(byte)
   }
 
   /// Carriage return (CRLF files), vertical tab and form feed.
@@ -105,10 +109,7 @@ extension OBJParser {
     while next < bytes.count {
       let byte = bytes[next]
       if byte == UInt8(ascii: "\n") { return next + 1 }
-      guard
-        byte == UInt8(ascii: " ") || byte == UInt8(ascii: "\t")
-          || Self.isOtherBlank(byte)
-      else { return nil }
+      guard Self.isBlank(byte) else { return nil }
       next += 1
     }
     return next

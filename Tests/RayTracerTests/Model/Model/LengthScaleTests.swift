@@ -299,4 +299,47 @@ final class LengthScaleTests: XCTestCase {
       }
     }
   }
+
+  /// The scale checks' measures taken in parts on several threads
+  /// (`Extent.addInParts`, merged) are one thread's: over a group's
+  /// entries, its flattened spheres and a mesh's triangles, with the
+  /// smallest and largest of each measure in different parts.
+  func testExtent_InPartsAsOneThread() {
+    var random = SplitMix64(seed: 17)
+    func next() -> Double { Double(random.next() >> 11) * 0x1p-53 }
+    var objects: [SceneObject<Double>] = (0..<70_000).map { _ in
+      .sphere(
+        Sphere(
+          center: Vector3(next(), next(), next()) * 100,
+          radius: 1e-3 + next()))
+    }
+    var mesh = TriangleMesh<Double>()
+    for _ in 0..<70_000 {
+      let a = Vector3(next(), next(), next()) * 50
+      mesh.append(
+        Triangle(a, a + Vector3(next(), 0, 0), a + Vector3(0, next(), 1e-4)))
+    }
+    objects.append(.mesh(mesh))
+    objects.append(.plane(Plane(normal: Vector3(0, 1, 0), offset: -3)))
+    let eye = Vector3<Double>(1, 2, 300)
+    func fields(_ e: LengthScale.Extent) -> [Double] {
+      [
+        e.largest, e.radiusSquared, e.edgeSquared, e.edgeSquaredReach,
+        e.axisSquared, e.planeDistance, e.reachInAxes,
+      ]
+    }
+    let group = Group(objects)
+    var one = LengthScale.Extent(eye: eye)
+    one.measure(.group(group))
+    var oneFlat = LengthScale.Extent(eye: eye)
+    oneFlat.add(group.flattened())
+    for threads in Self.quickCases([2, 3], half: 1) {
+      var parts = LengthScale.Extent(eye: eye, threads: threads)
+      parts.measure(.group(group))
+      XCTAssertEqual(fields(parts), fields(one), "group, \(threads) threads")
+      var flat = LengthScale.Extent(eye: eye, threads: threads)
+      flat.add(group.flattened(threads: threads))
+      XCTAssertEqual(fields(flat), fields(oneFlat), "flat, \(threads) threads")
+    }
+  }
 }
