@@ -74,7 +74,7 @@ extension CompiledScene {
     _ nearest: inout NearestHit<Scalar, Nearest>
   ) {
     if ordinaryTriangleCount < triangles.count {
-      testLargeTriangles(prepared, &nearest)
+      testLargeTriangles(ray, prepared, &nearest)
     }
     testEllipsoids(ray, &nearest)
   }

@@ -22,18 +22,7 @@ extension CompiledScene {
       BoundingVolumeHierarchy<Scalar>(
         count: ordinaryTriangleCount, threads: threads
       ) {
-        let record = records[$0]
-        let lower = Vector3(
-          Swift.min(record.v0.x, record.v1.x, record.v2.x),
-          Swift.min(record.v0.y, record.v1.y, record.v2.y),
-          Swift.min(record.v0.z, record.v1.z, record.v2.z))
-        let upper = Vector3(
-          Swift.max(record.v0.x, record.v1.x, record.v2.x),
-          Swift.max(record.v0.y, record.v1.y, record.v2.y),
-          Swift.max(record.v0.z, record.v1.z, record.v2.z))
-        let pad = Self.trianglePad(record)
-        let padding = Vector3(pad, pad, pad)
-        return (lower: lower - padding, upper: upper + padding)
+        Self.box(records[$0], pad: Self.trianglePad(records[$0]))
       }
     }
     bvh.arrange(&triangles)
@@ -45,6 +34,24 @@ extension CompiledScene {
     triangleHierarchy = bvh
     wideTriangleHierarchy = WideHierarchy(bvh, rayOrigin: rayOrigin)
     projectsTriangles = false
+    buildLargeTriangleHierarchy()
+  }
+
+  /// The box of `record`'s corners, widened by `pad` on every side.
+  @inline(__always)
+  static func box(_ record: TriangleRecord<Scalar>, pad: Scalar)
+    -> (lower: Vector3<Scalar>, upper: Vector3<Scalar>)
+  {
+    let lower = Vector3(
+      Swift.min(record.v0.x, record.v1.x, record.v2.x),
+      Swift.min(record.v0.y, record.v1.y, record.v2.y),
+      Swift.min(record.v0.z, record.v1.z, record.v2.z))
+    let upper = Vector3(
+      Swift.max(record.v0.x, record.v1.x, record.v2.x),
+      Swift.max(record.v0.y, record.v1.y, record.v2.y),
+      Swift.max(record.v0.z, record.v1.z, record.v2.z))
+    let padding = Vector3(pad, pad, pad)
+    return (lower: lower - padding, upper: upper + padding)
   }
 
   /// How far outside a triangle the watertight test can report a hit: a

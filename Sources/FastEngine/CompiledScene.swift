@@ -65,6 +65,10 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   var projectsTriangles = false
   var triangleHierarchy: BoundingVolumeHierarchy<Scalar>?
   var wideTriangleHierarchy: WideHierarchy<Scalar>?
+  /// The large triangles' hierarchy, for the search without tiles, when
+  /// there are many (`buildLargeTriangleHierarchy`).
+  var largeTriangleHierarchy: BoundingVolumeHierarchy<Scalar>?
+  var wideLargeTriangleHierarchy: WideHierarchy<Scalar>?
   /// Spheres under transforms that are not similarities.
   var ellipsoids: [Kernel.EllipsoidRecord] = []
   var ellipsoidMaterials: [Int32] = []
@@ -255,6 +259,8 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
       projectsTriangles = true
     } else if ordinary >= hierarchyThreshold {
       buildTriangleHierarchy()
+    } else {
+      buildLargeTriangleHierarchy()
     }
     for ellipsoid in all.transformedSpheres {
       ellipsoids.append(Kernel.makeEllipsoid(ellipsoid, eye: eye))

@@ -69,7 +69,13 @@ final class TriangleTilesTests: XCTestCase {
   /// Grids and loose triangles over many binades around a random point,
   /// some repeated with another material, a few spheres and maybe a plane,
   /// the eye outside, at the edge of or inside the cluster.
-  func randomScene(_ generator: inout SplitMix64) -> Scene? {
+  ///
+  /// With `largeTriangles`, that many more triangles whose planes pass near
+  /// the eye, some of them coincident twins with another material: enough
+  /// for their own hierarchy (`buildLargeTriangleHierarchy`).
+  func randomScene(_ generator: inout SplitMix64, largeTriangles: Int = 0)
+    -> Scene?
+  {
     let size: Double = generator.logUniform(1e-2, 1e4)
     let center =
       generator.unitVector(Double.self) * generator.logUniform(1, 1e6)
@@ -121,6 +127,26 @@ final class TriangleTilesTests: XCTestCase {
             (normal + across * 0.5).normalized()),
           materialIndex: 1))
     }
+    for index in 0..<largeTriangles {
+      if index % 5 == 4 {
+        var twin = triangles[triangles.count - 1]
+        twin.materialIndex = (twin.materialIndex + 1) % 3
+        triangles.append(twin)
+        continue
+      }
+      let normal = generator.unitVector(Double.self)
+      let along = normal.cross(generator.unitVector(Double.self)).normalized()
+      let across = normal.cross(along)
+      let base =
+        eye + normal * (size * generator.logUniform(1e-7, 1e-3))
+        + along * (size * generator.uniform(-2...2))
+      triangles.append(
+        Triangle(
+          base + along * (size * generator.logUniform(0.5, 20)),
+          base - along * (size * generator.logUniform(0.5, 20)),
+          base + across * (size * generator.uniform(-20...20)),
+          materialIndex: Int.random(in: 0..<3, using: &generator)))
+    }
     var objects = triangles.map { SceneObject<Double>.triangle($0) }
     for _ in 0..<Int.random(in: 0...3, using: &generator) {
       objects.insert(
@@ -158,10 +184,21 @@ final class TriangleTilesTests: XCTestCase {
   }
 
   func checkRandomScenes<Kernel: IntersectionKernel>(
-    _ kernel: Kernel.Type, base: UInt64
+    _ kernel: Kernel.Type, base: UInt64, largeTriangles: Int = 0,
+    seeds: Int = 12
   ) {
-    forEachSeed(Self.seedCount(12), base: base) { generator, _ in
-      guard let scene = randomScene(&generator) else { return }
+    forEachSeed(Self.seedCount(seeds), base: base) { generator, _ in
+      guard
+        let scene = randomScene(&generator, largeTriangles: largeTriangles)
+      else { return }
+      if largeTriangles > 0 {
+        let compiled = CompiledScene<Kernel>(
+          scene, hierarchyThreshold: 0, triangleProjectionThreshold: .max)
+        XCTAssertGreaterThanOrEqual(
+          compiled.triangles.count - compiled.ordinaryTriangleCount,
+          CompiledScene<Kernel>.largeTriangleHierarchyThreshold)
+        XCTAssertNotNil(compiled.largeTriangleHierarchy)
+      }
       for style in ImageStyle.allCases {
         var cases: [RenderSettings] = []
         for (width, height) in [(37, 23), (1, 9), (21, 1)] {
@@ -202,6 +239,18 @@ final class TriangleTilesTests: XCTestCase {
   func testRandomScenes_StableDouble() {
     checkRandomScenes(StableKernel<Double>.self, base: 0x7A1)
   }
+  /// Many large triangles, searched through their own hierarchy without
+  /// tiles: the same images as the tiles', which test each in order.
+  func testManyLargeTriangles_StableDouble() {
+    checkRandomScenes(
+      StableKernel<Double>.self, base: 0x7A5, largeTriangles: 40,
+      seeds: 4)
+  }
+  func testManyLargeTriangles_StableFloat() {
+    checkRandomScenes(
+      StableKernel<Float>.self, base: 0x7A6, largeTriangles: 40,
+      seeds: 4)
+  }
   func testRandomScenes_StableFloat() {
     checkRandomScenes(StableKernel<Float>.self, base: 0x7A2)
   }
@@ -213,6 +262,87 @@ final class TriangleTilesTests: XCTestCase {
   }
   func testRandomScenes_NaiveFloat() {
     checkRandomScenes(NaiveKernel<Float>.self, base: 0x7A4)
+  }
+
+  /// The large triangles' own hierarchy (`buildLargeTriangleHierarchy`)
+  /// answers as testing each in order does, for rays through their
+  /// corners and edges, each moved by up to 64 ulps of its coordinates'
+  /// size: where the test's rounding decides at the edge of the box, so
+  /// that boxes of the bare triangles would lose hits.
+  func checkLargeTriangleBoxes<Kernel: IntersectionKernel>(
+    _: Kernel.Type, base: UInt64
+  ) {
+    typealias S = Kernel.Scalar
+    forEachSeed(Self.seedCount(10), base: base) { generator, _ in
+      guard let scene = randomScene(&generator, largeTriangles: 30) else {
+        return
+      }
+      let tree = CompiledScene<Kernel>(
+        scene, hierarchyThreshold: 0, triangleProjectionThreshold: .max)
+      XCTAssertNotNil(tree.largeTriangleHierarchy)
+      var each = tree
+      each.largeTriangleHierarchy = nil
+      var hits = 0
+      for index in tree.ordinaryTriangleCount..<tree.triangles.count {
+        let record = tree.triangles[index]
+        let corners = [record.v0, record.v1, record.v2]
+        for _ in 0..<40 {
+          let a = Int.random(in: 0..<3, using: &generator)
+          let along = S(Double.random(in: 0...1, using: &generator))
+          let edge =
+            Bool.random(using: &generator)
+            ? corners[a]
+            : corners[a] + (corners[(a + 1) % 3] - corners[a]) * along
+          let ulps = S.ulpOfOne * edge.maxMagnitude
+          let jitter = Vector3(
+            S(Double.random(in: -64...64, using: &generator)),
+            S(Double.random(in: -64...64, using: &generator)),
+            S(Double.random(in: -64...64, using: &generator)))
+          let direction = (edge + jitter * ulps - tree.rayOrigin).normalized()
+          let ray = CameraRay(origin: tree.rayOrigin, direction: direction)
+          let prepared = WatertightRay(
+            Ray(origin: ray.origin, direction: ray.direction))
+          var found = NearestHit<S, CompiledScene<Kernel>.Nearest>(
+            before: .infinity)
+          tree.testLargeTriangles(ray, prepared, &found)
+          var expected = NearestHit<S, CompiledScene<Kernel>.Nearest>(
+            before: .infinity)
+          each.testLargeTriangles(ray, prepared, &expected)
+          XCTAssertEqual(found.hit?.t, expected.hit?.t, "\(Kernel.self)")
+          // The triangle aimed at: its box entered by every ray it
+          // reports hitting, at or before the hit, by the binary
+          // hierarchy's slab test (the wide one's Float boxes are wider).
+          let direct = withUnsafePointer(to: record) {
+            TriangleRecord.t(
+              prepared, $0,
+              plane: tree.trianglePlanes[index - tree.ordinaryTriangleCount],
+              before: .infinity)
+          }
+          if let direct {
+            hits += 1
+            let box = CompiledScene<Kernel>.largeTriangleBox(record)
+            let node = BoundingVolumeHierarchy<S>.Node(
+              lower: box.lower, upper: box.upper, index: 0, count: 1)
+            XCTAssertNotNil(
+              BoundingVolumeHierarchy<S>.Slab(ray).entry(node, before: direct),
+              "\(Kernel.self): triangle \(index) hit outside its box")
+          }
+          if case .triangle(let f)? = found.hit?.what,
+            case .triangle(let e)? = expected.hit?.what
+          {
+            XCTAssertEqual(f, e, "\(Kernel.self)")
+          }
+        }
+      }
+      XCTAssertGreaterThan(hits, 0)
+    }
+  }
+
+  func testLargeTriangleBoxes_StableDouble() {
+    checkLargeTriangleBoxes(StableKernel<Double>.self, base: 0x7A7)
+  }
+  func testLargeTriangleBoxes_StableFloat() {
+    checkLargeTriangleBoxes(StableKernel<Float>.self, base: 0x7A8)
   }
 
   /// Triangles whose corner extreme on the screen (left or right, top or
