@@ -74,8 +74,8 @@ struct SceneObjects {
     if let normals = triangle.vertexNormals {
       result.normals = (normals.n0, normals.n1, normals.n2)
     }
-    if let coordinates = triangle.textureCoordinates {
-      result.textureCoordinates = (coordinates.t0, coordinates.t1, coordinates.t2)
+    if let uv = triangle.textureCoordinates {
+      result.textureCoordinates = (uv.t0, uv.t1, uv.t2)
     }
     return result
   }

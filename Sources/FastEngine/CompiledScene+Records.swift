@@ -57,7 +57,9 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
   /// whose t comes from its plane has them even where the watertight t,
   /// which it replaces, strayed below 0.
   @inline(__always)
-  func weights(_ ray: WatertightRay<Scalar>) -> (u: Scalar, v: Scalar, w: Scalar)? {
+  func weights(_ ray: WatertightRay<Scalar>)
+    -> (u: Scalar, v: Scalar, w: Scalar)?
+  {
     TriangleIntersection.intersect(
       ray, v0, v1, v2, after: -.infinity, before: .infinity
     ).map { ($0.u, $0.v, $0.w) }

@@ -52,8 +52,8 @@ public struct Material<Scalar: RayScalar>: Hashable, Sendable {
       self.shininess = shininess
     }
 
-    /// ambient·kd + Σ lights [kd·max(0, n·l) + ks·max(0, −d·r)^shininess]·light,
-    /// with r = 2(n·l)n − l and the specular term only where n·l > 0.
+    /// ambient·kd + Σ [kd·max(0, n·l) + ks·max(0, −d·r)^shininess]·light
+    /// over the lights, r = 2(n·l)n − l, the specular term where n·l > 0.
     ///
     /// - Parameters:
     ///   - normal: unit normal at the hit.

@@ -21,7 +21,8 @@ struct Bench: ParsableCommand {
       --runs timed runs, then one run that renders twice --runs more times \
       (--repeat). 'render, warm' is the median of those repeated renders \
       (rendering only, as peers that time repeated renders in one process \
-      report it) and Mrays/s its throughput, every sample counted; 'render, first' the median of \
+      report it) and Mrays/s its throughput, every sample counted; \
+      'render, first' the median of \
       the timed runs' only render, cold caches and fresh buffers included; \
       'end to end' the median wall time of the timed runs (parse, build, \
       render, write PNGs); 'peak memory' their largest resident set. The \
@@ -106,9 +107,10 @@ struct Bench: ParsableCommand {
           if PeerBenchmark.accepts(workload) {
             let peer = try peerBenchmark.measure(
               scene: result.scenePath, workload)
+            let ratio = result.megaraysPerSecond / peer.megaraysPerSecond
             peerColumns =
               " \(formatted(peer.megaraysPerSecond, digits: 3)) | "
-              + "\(formatted(result.megaraysPerSecond / peer.megaraysPerSecond, digits: 3))× |"
+              + "\(formatted(ratio, digits: 3))× |"
           } else {
             peerColumns = " – | – |"
           }

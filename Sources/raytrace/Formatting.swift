@@ -7,7 +7,6 @@ import SceneDescription
 import Numerics
 import PlatformSupport
 
-
 /// Standard output, written line by line with write(2) so that a failed
 /// write is seen (a full device, a closed file): `main` then reports it
 /// and exits 1 rather than 0 with the output lost.
@@ -25,7 +24,8 @@ enum StandardOutput {
       if result < 0 && errno == EINTR { continue }
       guard result > 0 else {
         if failure == nil {
-          failure = result < 0 ? String(cString: strerror(errno)) : "nothing written"
+          failure =
+            result < 0 ? String(cString: strerror(errno)) : "nothing written"
         }
         return
       }

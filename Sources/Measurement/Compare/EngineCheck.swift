@@ -60,12 +60,15 @@ package struct EngineCheck {
     scene: Scene, course: RenderBuffers<Double>, fast: RenderBuffers<Double>,
     style: ImageStyle, outputs requested: RenderOutputs,
     depthRange: ClosedRange<Double>?, tolerance: Double,
-    probe: (Int, Int) -> (ray: Ray<Double>, hits: [(index: Int, hit: Hit<Double>)])
+    probe: (Int, Int) -> (
+      ray: Ray<Double>, hits: [(index: Int, hit: Hit<Double>)]
+    )
   ) {
     let range = style.depthRange(course.depth, given: depthRange)
     var images: [(String, Image8, Image8)] = []
     if requested.contains(.shaded) {
-      images.append(("shaded", style.colorImage(course), style.colorImage(fast)))
+      images.append(
+        ("shaded", style.colorImage(course), style.colorImage(fast)))
     }
     if requested.contains(.normals) {
       images.append(

@@ -43,8 +43,7 @@ extension ImageComparison {
   func describe(_ pattern: Pattern, _ nameA: String, _ nameB: String)
     -> String
   {
-    func moved(_ count: Int, _ positive: String, _ negative: String) -> String
-    {
+    func moved(_ count: Int, _ positive: String, _ negative: String) -> String {
       let pixels = abs(count) == 1 ? "one pixel" : "\(abs(count)) pixels"
       return "\(pixels) \(count > 0 ? positive : negative)"
     }
@@ -65,8 +64,9 @@ extension ImageComparison {
     case .swappedChannels(let order):
       let names = ["red", "green", "blue"]
       return "\(nameB) is \(nameA) with its channels swapped ("
-        + order.enumerated().map { "\(names[$0.offset]) holds \(names[$0.element])" }
-          .joined(separator: ", ") + ")"
+        + order.enumerated().map {
+          "\(names[$0.offset]) holds \(names[$0.element])"
+        }.joined(separator: ", ") + ")"
     case .normalConvention(let aIsAbsolute):
       let (absolute, shifted) = aIsAbsolute ? (nameA, nameB) : (nameB, nameA)
       return "the same normals in two conventions: \(absolute) shows |n| "
@@ -130,7 +130,9 @@ extension ImageComparison {
           bytes[index + 2] = 0
         } else {
           let gray = UInt8(min(255, brightness / Double(channels) / 3))
-          (bytes[index], bytes[index + 1], bytes[index + 2]) = (gray, gray, gray)
+          bytes[index] = gray
+          bytes[index + 1] = gray
+          bytes[index + 2] = gray
         }
       }
     }

@@ -141,7 +141,8 @@ extension ShapeProbes {
       if outside {
         return (
           .ownHitOutsideBox,
-          "its point o + t·d = \(ShapeProbe.text(point)) is outside its bounding box, "
+          "its point o + t·d = \(ShapeProbe.text(point)) is outside its "
+            + "bounding box, "
             + "\(ShapeProbe.text(box.lower)) to "
             + "\(ShapeProbe.text(box.upper)): the box must hold every point "
             + "it can be hit at, and t counts multiples of the direction "
@@ -158,7 +159,8 @@ extension ShapeProbes {
       let said = again.map { "finds t = \($0.t)" } ?? "misses"
       return (
         .ownTAlongRay,
-        "a second ray from \(ShapeProbe.text(start)), 3/4 of the way, along the same "
+        "a second ray from \(ShapeProbe.text(start)), 3/4 of the way, "
+          + "along the same "
           + "direction should find the same point at t = \(hit.t * 0.25), "
           + "and \(said): t counts multiples of the direction as given "
           + "(|d| = 3) from the ray's origin"

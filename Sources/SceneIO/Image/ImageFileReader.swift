@@ -138,7 +138,8 @@ package enum ImageFileReader {
     }
     let count = width * height * 3
     guard bytes.count - data >= count else {
-      throw Failure("it holds \(bytes.count - data) bytes of pixels, not \(count)")
+      throw Failure(
+        "it holds \(bytes.count - data) bytes of pixels, not \(count)")
     }
     try checkRoom(count)
     return ReadImage(

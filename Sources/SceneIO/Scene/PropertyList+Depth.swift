@@ -27,7 +27,8 @@ extension PropertyList {
       switch shape {
       case .some(let shape) where shape.depth > maximumDepth:
         throw SceneError(file: file, line: 0, column: 0, message: tooDeep)
-      case .some(let shape) where shape.visits > maximumVisits(forSize: bytes.count):
+      case .some(let shape)
+      where shape.visits > maximumVisits(forSize: bytes.count):
         throw SceneError(
           file: file, line: 0, column: 0,
           message: "the property list's shared objects would be read more "

@@ -71,7 +71,9 @@ extension PropertyList {
             return XMLProblem(
               line: start, message: "a CDATA section is never closed")
           }
-          if let problem = checkValue(from: textStart, to: index - 3, line: start) {
+          if let problem = checkValue(
+            from: textStart, to: index - 3, line: start)
+          {
             return problem
           }
         } else if starts(with: "<?") {
@@ -141,7 +143,8 @@ extension PropertyList {
     /// A start, end or empty-element tag at `index`.
     mutating func tag() -> XMLProblem? {
       let start = line
-      let closing = index + 1 < bytes.count && bytes[index + 1] == UInt8(ascii: "/")
+      let slash = UInt8(ascii: "/")
+      let closing = index + 1 < bytes.count && bytes[index + 1] == slash
       var end = index + (closing ? 2 : 1)
       let nameStart = end
       while end < bytes.count,
@@ -165,9 +168,10 @@ extension PropertyList {
         end += 1
       }
       guard end < bytes.count else {
-        return XMLProblem(line: start, message: "a tag is never closed with '>'")
+        return XMLProblem(
+          line: start, message: "a tag is never closed with '>'")
       }
-      let empty = !closing && end > nameStart && bytes[end - 1] == UInt8(ascii: "/")
+      let empty = !closing && end > nameStart && bytes[end - 1] == slash
       index = end + 1
       guard PropertyList.xmlElements.contains(name) else {
         return XMLProblem(
@@ -227,7 +231,8 @@ extension PropertyList {
     static func numberProblem(_ element: String, _ text: String, line: Int)
       -> XMLProblem?
     {
-      let shown = "<\(element)>\(SceneParser.escaped(String(text.prefix(40))))</\(element)>"
+      let escaped = SceneParser.escaped(String(text.prefix(40)))
+      let shown = "<\(element)>\(escaped)</\(element)>"
       if element == "integer" {
         if Int64(text) != nil || UInt64(text) != nil { return nil }
         let digits = text.drop { $0 == "-" || $0 == "+" }
@@ -238,8 +243,9 @@ extension PropertyList {
         }
         return XMLProblem(line: line, message: "\(shown) is not a whole number")
       }
-      if Double(text) != nil || ["nan", "+infinity", "-infinity", "inf", "-inf"]
-        .contains(text.lowercased())
+      if Double(text) != nil
+        || ["nan", "+infinity", "-infinity", "inf", "-inf"]
+          .contains(text.lowercased())
       {
         return nil
       }

@@ -103,9 +103,11 @@ enum PropertyList: Decodable, Sendable {
   /// The text of a UTF-16 or UTF-32 file as UTF-8, without its mark, for
   /// the scan; nil when it is not valid in its encoding.
   static func utf8(_ bytes: [UInt8], from encoding: WideEncoding) -> [UInt8]? {
-    let width = encoding == .utf16LittleEndian || encoding == .utf16BigEndian
+    let width =
+      encoding == .utf16LittleEndian || encoding == .utf16BigEndian
       ? 2 : 4
-    let little = encoding == .utf16LittleEndian || encoding == .utf32LittleEndian
+    let little =
+      encoding == .utf16LittleEndian || encoding == .utf32LittleEndian
     guard bytes.count % width == 0 else { return nil }
     var units: [UInt32] = []
     units.reserveCapacity(bytes.count / width - 1)
@@ -152,8 +154,8 @@ enum PropertyList: Decodable, Sendable {
         .firstIndex(of: quote)
     else { return text }
     return Array(
-      (string[..<valueStart] + "\"UTF-8\"" + string[string.index(after: valueEnd)...])
-        .utf8)
+      (string[..<valueStart] + "\"UTF-8\""
+        + string[string.index(after: valueEnd)...]).utf8)
   }
 
   /// Decodes `bytes`.

@@ -246,7 +246,9 @@ final class TriangleTilesTests: XCTestCase {
       StableKernel<Double>.self, base: 0x7A5, largeTriangles: 40,
       seeds: 4)
   }
-  func testManyLargeTriangles_StableFloat() {
+  /// (With RAYTRACE_LONG_TESTS: the same in Float.)
+  func testManyLargeTriangles_StableFloat() throws {
+    try skipUnlessLongTests()
     checkRandomScenes(
       StableKernel<Float>.self, base: 0x7A6, largeTriangles: 40,
       seeds: 4)
