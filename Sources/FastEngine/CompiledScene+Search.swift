@@ -87,13 +87,7 @@ extension CompiledScene {
   func testEllipsoids(
     _ ray: CameraRay<Scalar>, _ nearest: inout NearestHit<Scalar, Nearest>
   ) {
-    ellipsoids.withUnsafeBufferPointer { records in
-      for index in records.indices {
-        nearest.test(.ellipsoid(index)) {
-          Kernel.intersect(records[index], ray, before: $0)
-        }
-      }
-    }
+    if !ellipsoids.isEmpty { testEllipsoidsOnly(ray, &nearest) }
     if !shapes.isEmpty { testShapes(ray, &nearest) }
   }
 }

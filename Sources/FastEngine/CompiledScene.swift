@@ -72,6 +72,10 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
   /// Spheres under transforms that are not similarities.
   var ellipsoids: [Kernel.EllipsoidRecord] = []
   var ellipsoidMaterials: [Int32] = []
+  /// The ellipsoids' hierarchy, when there are many
+  /// (`buildEllipsoidHierarchy`).
+  var ellipsoidHierarchy: BoundingVolumeHierarchy<Scalar>?
+  var wideEllipsoidHierarchy: WideHierarchy<Scalar>?
   /// Shapes of kinds the engine does not specialise, in the world's units,
   /// each tested through its own `Hittable.intersect` after a check of its
   /// box (`testShapes`); empty for every scene of the readers' own kinds.
@@ -262,11 +266,18 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     } else {
       buildLargeTriangleHierarchy()
     }
+    var ellipsoidBoxes: [(lower: Vector3<Scalar>, upper: Vector3<Scalar>)?] =
+      []
     for ellipsoid in all.transformedSpheres {
       ellipsoids.append(Kernel.makeEllipsoid(ellipsoid, eye: eye))
       ellipsoidMaterials.append(
         Int32(truncatingIfNeeded: ellipsoid.sphere.materialIndex))
+      if all.transformedSpheres.count >= Self.ellipsoidHierarchyThreshold {
+        ellipsoidBoxes.append(
+          Self.ellipsoidBox(ellipsoid, eye: eye, rayOrigin: rayOrigin))
+      }
     }
+    buildEllipsoidHierarchy(ellipsoidBoxes)
     placeShapes(all.shapes)
   }
 

@@ -88,8 +88,10 @@ extension EllipsoidFrame {
     let q = s >= 0 ? s + root : s - root
     let viaQuotient = c / q
     let viaScale = q / a
-    let near = s >= 0 ? viaQuotient : viaScale
-    let far = s >= 0 ? viaScale : viaQuotient
+    // In order even where a tangent rounds the two forms out of it, as in
+    // `SphereIntersection.stableRoot`.
+    let near = Swift.min(viaQuotient, viaScale)
+    let far = Swift.max(viaQuotient, viaScale)
     let (lower, upper) = (tMin * inverseTScale, tMax * inverseTScale)
     if near > lower && near < upper { return near * tScale }
     if far > lower && far < upper { return far * tScale }
