@@ -88,8 +88,10 @@ extension CompiledScene {
 
   /// Offers the ellipsoids' hits to `nearest`: the hierarchy's nearest,
   /// first in order among equal t, when there is one (the answer of testing
-  /// each in order with a strict `<`), else each in order.
-  @inline(__always)
+  /// each in order with a strict `<`), else each in order. Out of line:
+  /// inlined into every pixel's search, the hierarchy's traversal slowed
+  /// scenes without ellipsoids.
+  @inline(never)
   func testEllipsoidsOnly(
     _ ray: CameraRay<Scalar>, _ nearest: inout NearestHit<Scalar, Nearest>
   ) {

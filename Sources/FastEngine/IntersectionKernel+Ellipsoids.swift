@@ -47,9 +47,17 @@ package struct ObjectSpaceEllipsoid<Kernel: IntersectionKernel>: Sendable {
         inverseRows.0.dot(d), inverseRows.1.dot(d), inverseRows.2.dot(d)))
   }
 
+  /// The sphere's root asked for without a bound, then compared with
+  /// tMax: at a tangent the stable method's two roots can round out of
+  /// order, and asked with tMax equal to the near one it answers with the
+  /// far one, a few ulps nearer; the answer must not depend on tMax, or
+  /// the ellipsoids' hierarchy (which asks with its ties' bound) and the
+  /// search one by one find different ellipsoids.
   @inline(__always)
   func intersect(_ ray: CameraRay<Scalar>, before tMax: Scalar) -> Scalar? {
-    Kernel.intersect(sphere, localRay(ray), before: tMax)
+    guard let t = Kernel.intersect(sphere, localRay(ray), before: .infinity)
+    else { return nil }
+    return t < tMax ? t : nil
   }
 
   /// Inlined where it is called, as it was before it had a type of its

@@ -88,8 +88,8 @@ extension EllipsoidFrame {
     let q = s >= 0 ? s + root : s - root
     let viaQuotient = c / q
     let viaScale = q / a
-    // In order even where a tangent rounds the two forms out of it, as in
-    // `SphereIntersection.stableRoot`.
+    // In order even where a tangent rounds the two forms out of it, so
+    // that the answer does not depend on tMax (`ObjectSpaceEllipsoid`).
     let near = Swift.min(viaQuotient, viaScale)
     let far = Swift.max(viaQuotient, viaScale)
     let (lower, upper) = (tMin * inverseTScale, tMax * inverseTScale)

@@ -123,12 +123,9 @@ package enum SphereIntersection {
     let q = s >= 0 ? s + root : s - root
     let viaQuotient = c / q
     let viaScale = q * inverseA
-    // At a tangent the two forms can round a few ulps out of order: the
-    // smaller is the near root, so that the answer is the least root in
-    // (tMin, tMax) whatever tMax is, as the hierarchies' ties assume.
-    let near = Swift.min(viaQuotient, viaScale)
+    let near = s >= 0 ? viaQuotient : viaScale
     if near > tMin && near < tMax { return (near, true) }
-    let far = Swift.max(viaQuotient, viaScale)
+    let far = s >= 0 ? viaScale : viaQuotient
     if far > tMin && far < tMax { return (far, false) }
     return nil
   }
