@@ -72,25 +72,13 @@ extension CompiledScene {
     _ ray: CameraRay<Scalar>, _ prepared: WatertightRay<Scalar>,
     _ nearest: inout NearestHit<Scalar, Nearest>
   ) {
+    if largeTriangleHierarchy != nil {
+      searchLargeTriangles(ray, prepared, &nearest)
+      return
+    }
     let first = ordinaryTriangleCount
     triangles.withUnsafeBufferPointer { records in
       trianglePlanes.withUnsafeBufferPointer { planes in
-        if let hierarchy = largeTriangleHierarchy {
-          hierarchy.order.withUnsafeBufferPointer { order in
-            let leaves = LargeTriangleLeaves(
-              records: records.baseAddress! + first, planes: planes,
-              order: order, ray: prepared)
-            if let hit = hierarchy.nearest(
-              ray, before: nearest.t, leaves: leaves,
-              wide: wideLargeTriangleHierarchy)
-            {
-              nearest.test(.triangle(first + Int(order[hit.index]))) { _ in
-                hit.t
-              }
-            }
-          }
-          return
-        }
         let ray = prepared
         for offset in planes.indices {
           nearest.test(.triangle(first + offset)) {
@@ -139,6 +127,37 @@ struct LargeTrianglePlane<Scalar: RayScalar>: Sendable {
       exponent: Scalar.greatestFiniteMagnitude.exponent / 3 - 3,
       significand: 1)
     edgesDecide = extent <= limit
+  }
+}
+
+extension CompiledScene {
+  /// `testLargeTriangles` through their hierarchy. Out of line, as the
+  /// ellipsoids' is: the traversal inlined into every ray's search is
+  /// code that scenes without many large triangles would carry.
+  @inline(never)
+  func searchLargeTriangles(
+    _ ray: CameraRay<Scalar>, _ prepared: WatertightRay<Scalar>,
+    _ nearest: inout NearestHit<Scalar, Nearest>
+  ) {
+    guard let hierarchy = largeTriangleHierarchy else { return }
+    let first = ordinaryTriangleCount
+    triangles.withUnsafeBufferPointer { records in
+      trianglePlanes.withUnsafeBufferPointer { planes in
+        hierarchy.order.withUnsafeBufferPointer { order in
+          let leaves = LargeTriangleLeaves(
+            records: records.baseAddress! + first, planes: planes,
+            order: order, ray: prepared)
+          if let hit = hierarchy.nearest(
+            ray, before: nearest.t, leaves: leaves,
+            wide: wideLargeTriangleHierarchy)
+          {
+            nearest.test(.triangle(first + Int(order[hit.index]))) { _ in
+              hit.t
+            }
+          }
+        }
+      }
+    }
   }
 }
 
