@@ -73,45 +73,45 @@ extension CompiledScene {
     return box
   }
 
-  /// Builds the ellipsoids' hierarchy over `boxes` when they are many and
-  /// every box is finite.
+  /// Builds the ellipsoids' hierarchy over `transformed` (the spheres
+  /// `ellipsoids` were compiled from, in the coordinates of `eye`) when
+  /// they are many and every box is finite.
   mutating func buildEllipsoidHierarchy(
-    _ boxes: [(lower: Vector3<Scalar>, upper: Vector3<Scalar>)?]
+    _ transformed: [TransformedSphere<Double>], eye: Vector3<Double>
   ) {
-    guard boxes.count >= Self.ellipsoidHierarchyThreshold else { return }
-    let finite = boxes.compactMap { $0 }
-    guard finite.count == boxes.count else { return }
-    let bvh = BoundingVolumeHierarchy<Scalar>(boxes: finite, threads: threads)
+    guard transformed.count >= Self.ellipsoidHierarchyThreshold else {
+      return
+    }
+    var boxes: [(lower: Vector3<Scalar>, upper: Vector3<Scalar>)] = []
+    boxes.reserveCapacity(transformed.count)
+    for ellipsoid in transformed {
+      guard
+        let box = Self.ellipsoidBox(ellipsoid, eye: eye, rayOrigin: rayOrigin)
+      else { return }
+      boxes.append(box)
+    }
+    let bvh = BoundingVolumeHierarchy<Scalar>(boxes: boxes, threads: threads)
     ellipsoidHierarchy = bvh
     wideEllipsoidHierarchy = WideHierarchy(bvh, rayOrigin: rayOrigin)
   }
 
-  /// Offers the ellipsoids' hits to `nearest`: the hierarchy's nearest,
-  /// first in order among equal t, when there is one (the answer of testing
-  /// each in order with a strict `<`), else each in order. Out of line:
-  /// inlined into every pixel's search, the hierarchy's traversal slowed
-  /// scenes without ellipsoids.
+  /// `testEllipsoids` through their hierarchy: its nearest, first in order
+  /// among equal t (the answer of testing each in order with a strict
+  /// `<`). Out of line: inlined into every pixel's search, the traversal
+  /// made the 10⁴-sphere render a third slower.
   @inline(never)
-  func testEllipsoidsOnly(
+  func searchEllipsoids(
     _ ray: CameraRay<Scalar>, _ nearest: inout NearestHit<Scalar, Nearest>
   ) {
+    guard let hierarchy = ellipsoidHierarchy else { return }
     ellipsoids.withUnsafeBufferPointer { records in
-      if let hierarchy = ellipsoidHierarchy {
-        hierarchy.order.withUnsafeBufferPointer { order in
-          let leaves = EllipsoidLeaves<Kernel>(
-            records: records, order: order, ray: ray)
-          if let hit = hierarchy.nearest(
-            ray, before: nearest.t, leaves: leaves,
-            wide: wideEllipsoidHierarchy)
-          {
-            nearest.test(.ellipsoid(Int(order[hit.index]))) { _ in hit.t }
-          }
-        }
-        return
-      }
-      for index in records.indices {
-        nearest.test(.ellipsoid(index)) {
-          Kernel.intersect(records[index], ray, before: $0)
+      hierarchy.order.withUnsafeBufferPointer { order in
+        let leaves = EllipsoidLeaves<Kernel>(
+          records: records, order: order, ray: ray)
+        if let hit = hierarchy.nearest(
+          ray, before: nearest.t, leaves: leaves, wide: wideEllipsoidHierarchy)
+        {
+          nearest.test(.ellipsoid(Int(order[hit.index]))) { _ in hit.t }
         }
       }
     }

@@ -79,11 +79,10 @@ extension CompiledScene {
     let first = ordinaryTriangleCount
     triangles.withUnsafeBufferPointer { records in
       trianglePlanes.withUnsafeBufferPointer { planes in
-        let ray = prepared
         for offset in planes.indices {
           nearest.test(.triangle(first + offset)) {
             TriangleRecord.t(
-              ray, records.baseAddress! + first + offset,
+              prepared, records.baseAddress! + first + offset,
               plane: planes[offset], before: $0)
           }
         }

@@ -79,7 +79,8 @@ extension CompiledScene {
     testEllipsoids(ray, &nearest)
   }
 
-  /// Offers the ellipsoids' hits to `nearest`, in order, then the other
+  /// Offers the ellipsoids' hits to `nearest`, through their hierarchy
+  /// when there is one (`searchEllipsoids`), else in order; then the other
   /// shapes'. The records are read in place: copied out of the array, the
   /// stable method's (both of its forms, `StableEllipsoid`) made every
   /// test a memory copy.
@@ -87,7 +88,17 @@ extension CompiledScene {
   func testEllipsoids(
     _ ray: CameraRay<Scalar>, _ nearest: inout NearestHit<Scalar, Nearest>
   ) {
-    if !ellipsoids.isEmpty { testEllipsoidsOnly(ray, &nearest) }
+    if ellipsoidHierarchy != nil {
+      searchEllipsoids(ray, &nearest)
+    } else {
+      ellipsoids.withUnsafeBufferPointer { records in
+        for index in records.indices {
+          nearest.test(.ellipsoid(index)) {
+            Kernel.intersect(records[index], ray, before: $0)
+          }
+        }
+      }
+    }
     if !shapes.isEmpty { testShapes(ray, &nearest) }
   }
 }

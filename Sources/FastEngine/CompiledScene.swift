@@ -266,18 +266,12 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
     } else {
       buildLargeTriangleHierarchy()
     }
-    var ellipsoidBoxes: [(lower: Vector3<Scalar>, upper: Vector3<Scalar>)?] =
-      []
     for ellipsoid in all.transformedSpheres {
       ellipsoids.append(Kernel.makeEllipsoid(ellipsoid, eye: eye))
       ellipsoidMaterials.append(
         Int32(truncatingIfNeeded: ellipsoid.sphere.materialIndex))
-      if all.transformedSpheres.count >= Self.ellipsoidHierarchyThreshold {
-        ellipsoidBoxes.append(
-          Self.ellipsoidBox(ellipsoid, eye: eye, rayOrigin: rayOrigin))
-      }
     }
-    buildEllipsoidHierarchy(ellipsoidBoxes)
+    buildEllipsoidHierarchy(all.transformedSpheres, eye: eye)
     placeShapes(all.shapes)
   }
 

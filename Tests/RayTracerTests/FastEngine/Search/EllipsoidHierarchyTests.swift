@@ -122,10 +122,10 @@ final class EllipsoidHierarchyTests: XCTestCase {
         let ray = CameraRay(origin: tree.rayOrigin, direction: direction)
         var found = NearestHit<S, CompiledScene<Kernel>.Nearest>(
           before: .infinity)
-        tree.testEllipsoidsOnly(ray, &found)
+        tree.testEllipsoids(ray, &found)
         var expected = NearestHit<S, CompiledScene<Kernel>.Nearest>(
           before: .infinity)
-        each.testEllipsoidsOnly(ray, &expected)
+        each.testEllipsoids(ray, &expected)
         tested += 1
         // Each ellipsoid's answer does not depend on the bound: asked up to
         // its own t it misses, up to t's successor it finds t again.
