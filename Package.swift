@@ -102,7 +102,11 @@ if let realPackages {
 // (it is small: a few seconds, and a student does not edit it), with the
 // vector operations the course calls prespecialised for Double
 // (`@_specialize`), so that the course engine still renders every course
-// scene at 800×800 within 2 s. To optimise the course target as well
+// scene at 800×800 within 2 s. The fast engine is optimised in those
+// builds too: unoptimised, its generic kernels spent most of `swift test`
+// looking up generic metadata (62 s of test time, 53.5 s so, for 5.7 s
+// more of the first build; docs/PERFORMANCE.md, "The student's loop").
+// To optimise the course target as well
 // (a debug build nearly as fast as a release one), or nothing at all
 // (should a toolchain refuse the flag):
 //   RAYTRACE_OPTIMIZED_COURSE=1 swift build
@@ -179,7 +183,7 @@ let package = Package(
     .target(
       name: "FastEngine",
       dependencies: ["Geometry", "SceneDescription", "Numerics", "PlatformSupport"],
-      swiftSettings: acrossTargets),
+      swiftSettings: acrossTargets + optimizedInDebugBuilds),
     .target(
       name: "Pipeline",
       dependencies: [
