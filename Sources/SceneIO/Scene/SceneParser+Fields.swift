@@ -178,6 +178,38 @@ extension SceneParser {
     return (try wholeNumber("\(field)"), valueToken)
   }
 
+  /// A block that declares its count (`numLights 2`), then that many
+  /// items, each one of `choices` read by `item`: the Lights and Materials
+  /// blocks, with their errors for a wrong count, an unknown item and an
+  /// early end.
+  mutating func parseCountedBlock<Item>(
+    _ block: String, count field: StaticString, noun: String,
+    choices: [String],
+    item: (inout SceneParser, String) throws(SceneError) -> Item
+  ) throws(SceneError) -> [Item] {
+    try expect(.open, "'{' after \(block)")
+    let declared = try count(field, in: block)
+    var items: [Item] = []
+    while true {
+      let token = try next()
+      if token.kind == .close {
+        try checkCount(items.count, declared, block, "\(field)", noun, token)
+        return items
+      }
+      guard token.kind == .word else {
+        throw unexpectedEnd(token, in: block)
+      }
+      let name = text(token)
+      guard choices.contains(name) else {
+        throw unexpected(token, expected: "a \(noun)", choices: choices)
+      }
+      if items.count == declared.value {
+        throw tooMany(declared, block, "\(field)", noun, token)
+      }
+      items.append(try item(&self, name))
+    }
+  }
+
   func checkCount(
     _ found: Int, _ declared: (value: Int, token: SceneToken), _ block: String,
     _ field: String, _ noun: String, _ close: SceneToken

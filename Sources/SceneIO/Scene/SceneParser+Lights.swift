@@ -6,32 +6,12 @@ import PlatformSupport
 /// The text format's Lights, Background and Materials blocks.
 extension SceneParser {
   mutating func parseLights() throws(SceneError) -> [Light<Double>] {
-    try expect(.open, "'{' after Lights")
-    let declared = try count("numLights", in: "Lights")
-    var lights: [Light<Double>] = []
-    while true {
-      let token = try next()
-      if token.kind == .close {
-        try checkCount(
-          lights.count, declared, "Lights", "numLights", "light", token)
-        return lights
-      }
-      guard token.kind == .word else {
-        throw unexpectedEnd(token, in: "Lights")
-      }
-      let name = text(token)
-      if name == "PointLight" || name == "DirectionalLight" {
-        if lights.count == declared.value {
-          throw tooMany(declared, "Lights", "numLights", "light", token)
-        }
-        lights.append(
-          name == "PointLight"
-            ? try parsePointLight() : try parseDirectionalLight())
-      } else {
-        throw unexpected(
-          token, expected: "a light",
-          choices: ["PointLight", "DirectionalLight"])
-      }
+    try parseCountedBlock(
+      "Lights", count: "numLights", noun: "light",
+      choices: ["PointLight", "DirectionalLight"]
+    ) { (parser: inout SceneParser, name: String) throws(SceneError) in
+      name == "PointLight"
+        ? try parser.parsePointLight() : try parser.parseDirectionalLight()
     }
   }
 
@@ -106,29 +86,11 @@ extension SceneParser {
   mutating func parseMaterials() throws(SceneError) -> [Material<
     Double
   >] {
-    try expect(.open, "'{' after Materials")
-    let declared = try count("numMaterials", in: "Materials")
-    var materials: [Material<Double>] = []
-    while true {
-      let token = try next()
-      if token.kind == .close {
-        try checkCount(
-          materials.count, declared, "Materials", "numMaterials", "material",
-          token)
-        return materials
-      }
-      guard token.kind == .word else {
-        throw unexpectedEnd(token, in: "Materials")
-      }
-      let name = text(token)
-      guard name == "Material" || name == "PhongMaterial" else {
-        throw unexpected(
-          token, expected: "a material", choices: ["Material", "PhongMaterial"])
-      }
-      if materials.count == declared.value {
-        throw tooMany(declared, "Materials", "numMaterials", "material", token)
-      }
-      materials.append(try parseMaterial(name))
+    try parseCountedBlock(
+      "Materials", count: "numMaterials", noun: "material",
+      choices: ["Material", "PhongMaterial"]
+    ) { (parser: inout SceneParser, name: String) throws(SceneError) in
+      try parser.parseMaterial(name)
     }
   }
 
