@@ -375,7 +375,8 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
         at: TextureCoordinate<Scalar>(coordinate))
       return material.shade(
         point: point, normal: normal, viewDirection: ray.direction,
-        ambient: ambient, lights: lights, attenuate: attenuate)
+        ambient: ambient, lights: lights, attenuate: attenuate,
+        power: specularPower)
     }
     if !textures.isEmpty, case .triangle(let triangle) = what,
       let texture = textures[index],
@@ -387,10 +388,12 @@ package struct CompiledScene<Kernel: IntersectionKernel>: Sendable {
         at: coordinates.at(u: weights.u, v: weights.v, w: weights.w))
       return material.shade(
         point: point, normal: normal, viewDirection: ray.direction,
-        ambient: ambient, lights: lights, attenuate: attenuate)
+        ambient: ambient, lights: lights, attenuate: attenuate,
+        power: specularPower)
     }
     return surfaces[index].shade(
       point: point, normal: normal, viewDirection: ray.direction,
-      ambient: ambient, lights: lights, attenuate: attenuate)
+      ambient: ambient, lights: lights, attenuate: attenuate,
+      power: specularPower)
   }
 }

@@ -58,12 +58,15 @@ public struct Material<Scalar: RayScalar>: Hashable, Sendable {
     /// - Parameters:
     ///   - normal: unit normal at the hit.
     ///   - viewDirection: the unit ray direction d (towards the hit).
+    ///   - power: highlight^shininess; the course's is the C library's
+    ///     `pow`, the fast engine's `Numerics.specularPower`.
     @inlinable
     @_specialize(where Scalar == Double)
     public func shade(
       point: Vector3<Scalar>, normal: Vector3<Scalar>,
       viewDirection: Vector3<Scalar>, ambient: RGB<Scalar>,
-      lights: [Light<Scalar>], attenuate: Bool
+      lights: [Light<Scalar>], attenuate: Bool,
+      power: (Scalar, Scalar) -> Scalar = Scalar.pow
     ) -> RGB<Scalar> {
       var color = ambient * diffuse
       for light in lights {
@@ -75,7 +78,7 @@ public struct Material<Scalar: RayScalar>: Hashable, Sendable {
         let reflected = normal * (2 * cosine) - toLight
         let highlight = -viewDirection.dot(reflected)
         if highlight > 0 {
-          intensity += specularTerm(highlight)
+          intensity += specularTerm(highlight, power: power)
         }
         color += intensity * lightColor
       }
@@ -83,8 +86,9 @@ public struct Material<Scalar: RayScalar>: Hashable, Sendable {
     }
 
     /// specular·highlight^shininess, the same bits as computing it in full
-    /// (for Double and Float; the power is the C library's `pow`), with
-    /// the power left out where its value is known or cannot show:
+    /// (for Double and Float; with the C library's `pow`, or the fast
+    /// engine's `specularPower`, which agrees on these cases), with the
+    /// power left out where its value is known or cannot show:
     /// - shininess 1: x¹ = x is a double, which the C library's `pow`
     ///   returns (glibc's error is below 0.52 ulp, and a result within that
     ///   of a double is the double; `MaterialSpecularTests` checks 10⁶
@@ -102,7 +106,9 @@ public struct Material<Scalar: RayScalar>: Hashable, Sendable {
     /// In double-double (tests only) `pow` goes through Double, so there
     /// shininess 1 is more accurate than `pow` was.
     @inlinable @inline(__always)
-    func specularTerm(_ highlight: Scalar) -> RGB<Scalar> {
+    func specularTerm(
+      _ highlight: Scalar, power: (Scalar, Scalar) -> Scalar = Scalar.pow
+    ) -> RGB<Scalar> {
       if shininess == 1 { return specular * highlight }
       if shininess == 0 { return specular }
       if specular == .zero && highlight <= 1.0625 && shininess >= 0
@@ -110,7 +116,7 @@ public struct Material<Scalar: RayScalar>: Hashable, Sendable {
       {
         return specular
       }
-      return specular * Scalar.pow(highlight, shininess)
+      return specular * power(highlight, shininess)
     }
   }
 }
