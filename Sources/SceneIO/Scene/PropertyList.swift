@@ -24,10 +24,19 @@ enum PropertyList: Decodable, Sendable {
   /// The tree of what Foundation's reader returns: strings, numbers,
   /// booleans, arrays and dictionaries (with string keys); anything else,
   /// data or a date, is `other`.
+  ///
+  /// Arrays and dictionaries are matched before numbers: asking whether a
+  /// Swift array is an `NSNumber` bridges it, and everything in it, to
+  /// Foundation's classes first, so every level of a deep list bridged all
+  /// the levels below it again (2 MB of lists 300 deep took 13 s).
   init(_ value: Any) {
     switch value {
     case let string as String:
       self = .string(string)
+    case let array as [Any]:
+      self = .array(array.map(PropertyList.init))
+    case let dictionary as [String: Any]:
+      self = .dictionary(dictionary.mapValues(PropertyList.init))
     case let number as NSNumber:
       // A boolean is a Bool, or (on macOS) an NSNumber of a char's type.
       if type(of: value) == Bool.self
@@ -37,10 +46,6 @@ enum PropertyList: Decodable, Sendable {
       } else {
         self = .number(number.doubleValue)
       }
-    case let array as [Any]:
-      self = .array(array.map(PropertyList.init))
-    case let dictionary as [String: Any]:
-      self = .dictionary(dictionary.mapValues(PropertyList.init))
     default:
       self = .other
     }

@@ -60,7 +60,9 @@ final class PlistHostileTests: XCTestCase {
   /// Sixty arrays, each listing the next twice: 475 bytes in the issue's
   /// form, 2⁶⁰ objects for a decoder that reads each reference again.
   func testBinary_SharedReferencesExpandingExponentially() {
-    var objects: [[UInt8]] = (0..<60).map { [0xA2, UInt8($0 + 1), UInt8($0 + 1)] }
+    var objects: [[UInt8]] = (0..<60).map {
+      [0xA2, UInt8($0 + 1), UInt8($0 + 1)]
+    }
     objects.append([0x51, UInt8(ascii: "x")])
     let bytes = list(objects)
     let start = Date()
@@ -79,8 +81,11 @@ final class PlistHostileTests: XCTestCase {
   func testXML_NestingHiddenInCommentsAndCDATA() {
     let opening = String(repeating: "<array>", count: 100_000)
     let closing = String(repeating: "</array>", count: 100_000)
-    for hidden in ["<!-- \(closing) -->", "<string><![CDATA[\(closing)]]></string>"] {
-      let text = "<?xml version=\"1.0\"?>\n<plist>\n\(opening)\(hidden)\n</plist>\n"
+    for hidden in [
+      "<!-- \(closing) -->", "<string><![CDATA[\(closing)]]></string>",
+    ] {
+      let text =
+        "<?xml version=\"1.0\"?>\n<plist>\n\(opening)\(hidden)\n</plist>\n"
       XCTAssertEqual(
         message(Array(text.utf8)),
         "h.plist:3: error: the property list is nested more than 816 levels "
@@ -95,7 +100,8 @@ final class PlistHostileTests: XCTestCase {
       <plist><!-- </dict> <array> --><dict>
       <key>Group</key><array/></dict></plist>
       """
-    XCTAssertEqual(message(Array(fine.utf8)), "h.plist: error: the scene has no Camera")
+    XCTAssertEqual(
+      message(Array(fine.utf8)), "h.plist: error: the scene has no Camera")
   }
 
   /// The line of the problem, not the decoder's line 1.
@@ -173,7 +179,9 @@ final class PlistHostileTests: XCTestCase {
       }
       var bytes: [UInt8] = []
       for unit in units {
-        var unitBytes = (0..<width).map { UInt8(truncatingIfNeeded: unit >> (8 * UInt32(width - 1 - $0))) }
+        var unitBytes = (0..<width).map {
+          UInt8(truncatingIfNeeded: unit >> (8 * UInt32(width - 1 - $0)))
+        }
         if little { unitBytes.reverse() }
         bytes += unitBytes
       }
@@ -182,7 +190,8 @@ final class PlistHostileTests: XCTestCase {
     for (width, little) in [(2, true), (2, false), (4, true), (4, false)] {
       let bytes = encoded(width: width, little: little)
       let scene = try SceneReader.parse(bytes: bytes, file: "w.plist")
-      XCTAssertEqual(scene.root, utf8.root, "UTF-\(8 * width) \(little ? "LE" : "BE")")
+      XCTAssertEqual(
+        scene.root, utf8.root, "UTF-\(8 * width) \(little ? "LE" : "BE")")
       XCTAssertEqual(scene.camera, utf8.camera)
     }
     XCTAssertEqual(
@@ -200,12 +209,53 @@ final class PlistHostileTests: XCTestCase {
           ("<?xml version=\"1.0\"?>\n<plist><dict><key>Camera</key>\(value)"
             + "</dict></plist>").utf8))
     }
-    XCTAssertTrue(message("<true/>").hasSuffix("found a boolean"), message("<true/>"))
+    XCTAssertTrue(
+      message("<true/>").hasSuffix("found a boolean"), message("<true/>"))
     XCTAssertTrue(message("<integer>3</integer>").hasSuffix("found a number"))
     XCTAssertTrue(message("<real>2.5</real>").hasSuffix("found a number"))
-    XCTAssertTrue(message("<data>AAAA</data>").hasSuffix("found data or a date"))
-    XCTAssertTrue(message("<string>x</string>").hasSuffix("found the string \"x\""))
+    XCTAssertTrue(
+      message("<data>AAAA</data>").hasSuffix("found data or a date"))
+    XCTAssertTrue(
+      message("<string>x</string>").hasSuffix("found the string \"x\""))
     XCTAssertTrue(message("<array/>").hasSuffix("found an array"))
+  }
+
+  /// Lists and dictionaries 300 deep, under the 816-level limit, read to
+  /// the bottom with every level's kind. (Before arrays were matched ahead
+  /// of numbers, each level bridged all those below it again: 2 MB of such
+  /// lists took 5–21 s, docs/ROBUSTNESS.md; here the shape is what is
+  /// checked, not the time.)
+  func testXML_DeepListsKeepTheirShape() throws {
+    let depth = 300
+    let arrays =
+      String(repeating: "<array>", count: depth) + "<true/>"
+      + String(repeating: "</array>", count: depth)
+    let dictionaries =
+      String(repeating: "<dict><key>k</key>", count: depth)
+      + "<integer>7</integer>" + String(repeating: "</dict>", count: depth)
+    let text =
+      "<?xml version=\"1.0\"?>\n<plist><array>"
+      + String(repeating: arrays + dictionaries, count: 3) + "</array></plist>"
+    let root = try PropertyList.decode(Array(text.utf8), file: "h.plist")
+    guard case .array(let chains) = root else {
+      return XCTFail("\(root)")
+    }
+    XCTAssertEqual(chains.count, 6)
+    for (index, chain) in chains.enumerated() {
+      var node = chain
+      for _ in 0..<depth {
+        switch node {
+        case .array(let items) where items.count == 1: node = items[0]
+        case .dictionary(let items) where items.count == 1:
+          node = items["k"] ?? .other
+        default: return XCTFail("chain \(index): \(node)")
+        }
+      }
+      switch (index % 2, node) {
+      case (0, .boolean(true)), (1, .number(7)): break
+      default: XCTFail("chain \(index) ends in \(node)")
+      }
+    }
   }
 
   /// Found by the fuzzer: a binary list holding a set made Foundation's
@@ -226,7 +276,9 @@ final class PlistHostileTests: XCTestCase {
         + "that is not a string")
     // The fuzzer's own input replays to one line.
     let finding = "\(projectFolder)/Fuzz/corpus/plist/finding-set-bridging"
-    let bytes = (try? Data(contentsOf: URL(fileURLWithPath: finding))).map(Array.init) ?? []
+    let bytes =
+      (try? Data(contentsOf: URL(fileURLWithPath: finding))).map(Array.init)
+      ?? []
     XCTAssertFalse(bytes.isEmpty)
     XCTAssertTrue(message(bytes).hasPrefix("h.plist: error: "), message(bytes))
   }
