@@ -15,9 +15,8 @@ import RealModule
 /// of Double's smallest subnormals). In Float that is half an ulp and a
 /// trifle; in Double about 2n ulps at most, far below what an 8-bit
 /// output resolves (2⁻⁸), and shading writes nothing else but an image of
-/// values. x¹ and x⁰ never come here
-/// (`specularTerm` returns them itself). `SpecularPowerTests` holds the
-/// bound.
+/// values. x¹ and x⁰ never come here (`specularTerm` returns them
+/// itself). `SpecularPowerTests` holds the bound.
 ///
 /// Why: the C library's `pow` took 9 % of the course scene's render and
 /// 5–10 % of a supersampled one (docs/PERFORMANCE.md, "Shading in whole

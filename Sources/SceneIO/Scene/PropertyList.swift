@@ -7,7 +7,7 @@ import Foundation
 
 /// A property list read by the toolchain's Foundation decoder (XML or
 /// binary, on Linux and macOS alike), as a tree of values.
-enum PropertyList: Decodable, Sendable {
+enum PropertyList: Sendable {
   case string(String)
   case number(Double)
   case boolean(Bool)
@@ -47,23 +47,6 @@ enum PropertyList: Decodable, Sendable {
         self = .number(number.doubleValue)
       }
     default:
-      self = .other
-    }
-  }
-
-  init(from decoder: any Decoder) throws {
-    let container = try decoder.singleValueContainer()
-    if let value = try? container.decode(String.self) {
-      self = .string(value)
-    } else if let value = try? container.decode(Bool.self) {
-      self = .boolean(value)
-    } else if let value = try? container.decode(Double.self) {
-      self = .number(value)
-    } else if let value = try? container.decode([PropertyList].self) {
-      self = .array(value)
-    } else if let value = try? container.decode([String: PropertyList].self) {
-      self = .dictionary(value)
-    } else {
       self = .other
     }
   }
