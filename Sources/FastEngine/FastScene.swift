@@ -34,7 +34,8 @@ package struct FastScene: Sendable {
     threads: Int = Platform.availableCores
   ) {
     self = options.withKernel(
-      Compile(scene: scene, textures: textures, options: options,
+      Compile(
+        scene: scene, textures: textures, options: options,
         thresholds: thresholds, threads: threads))
   }
 
@@ -48,7 +49,9 @@ package struct FastScene: Sendable {
   }
 
   /// Renders the outputs `settings` asks for, reusing `recycling`'s
-  /// arrays where they fit (a repeated render).
+  /// arrays where they fit (a repeated render). The scene's search is
+  /// kept for the next render (`SearchCache`): its hierarchies, and the
+  /// screen tiles of the last view, while this value lives.
   package func render(
     _ settings: RenderSettings, progress: (@Sendable (Int) -> Void)? = nil,
     recycling: consuming AnyRenderBuffers? = nil
@@ -61,13 +64,14 @@ package struct FastScene: Sendable {
     planes = compiled.planeCount
     triangles = compiled.triangleCount
     ellipsoids = compiled.ellipsoidCount
+    let cache = SearchCache<Kernel>()
     draw = { settings, progress, recycling in
       // Taken out of the enum, not copied: the renderer reuses arrays
       // only where nothing else holds them.
       let recycled = AnyRenderBuffers.take(
         consume recycling, as: Kernel.Scalar.self)
       let result = Renderer.renderReportingSearch(
-        compiled, settings: settings, progress: progress,
+        compiled, settings: settings, cache: cache, progress: progress,
         recycling: consume recycled)
       return FastRender(
         buffers: AnyRenderBuffers(result.buffers), search: result.search,

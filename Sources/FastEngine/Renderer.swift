@@ -55,29 +55,25 @@ package enum Renderer {
   /// compiled for projection is projected onto screen tiles, or given its
   /// hierarchies when `ScreenTiles` declines it.
   ///
+  /// - Parameter cache: where the scene's earlier renders left their
+  ///   tiles and hierarchies (`SearchCache`); without it both are built
+  ///   for this render alone.
   /// - Parameter recycling: an earlier render's buffers of the same size
   ///   and outputs, written over instead of allocating new ones (repeated
   ///   renders, `RenderSettings.repeats`): memory already faulted in.
   package static func renderReportingSearch<Kernel: IntersectionKernel>(
     _ scene: CompiledScene<Kernel>, settings: RenderSettings,
     overlapLimit: Int = ScreenTiles<Kernel>.overlapLimit,
+    cache: SearchCache<Kernel>? = nil,
     progress: (@Sendable (Int) -> Void)? = nil,
     recycling: consuming RenderBuffers<Kernel.Scalar>? = nil
   ) -> (
     buffers: RenderBuffers<Kernel.Scalar>, search: SphereSearch,
     triangleSearch: TriangleSearch
   ) {
-    var scene = scene
-    var tiles: ScreenTiles<Kernel>?
-    if scene.projectsSpheres || scene.projectsTriangles {
-      let camera = settings.camera(scene.camera, as: Kernel.Scalar.self)
-      tiles = ScreenTiles(
-        scene, camera: camera, settings: settings, overlapLimit: overlapLimit)
-    }
-    if tiles == nil {
-      if scene.projectsSpheres { scene.buildSphereHierarchy() }
-      if scene.projectsTriangles { scene.buildTriangleHierarchy() }
-    }
+    let (scene, tiles) =
+      cache?.search(scene, settings: settings, overlapLimit: overlapLimit)
+      ?? search(scene, settings: settings, overlapLimit: overlapLimit)
     let buffers = render(
       scene, settings: settings, rays: Kernel.Scalar.self, tiles: tiles,
       progress: progress, recycling: consume recycling)
@@ -92,6 +88,40 @@ package enum Renderer {
       ? .screenTiles
       : scene.usesTriangleHierarchy ? .hierarchy : .everyTriangle
     return (buffers, search, triangleSearch)
+  }
+
+  /// The scene to render and its tiles: the tiles of a scene compiled for
+  /// projection, or, where there are none, the scene with its hierarchies.
+  static func search<Kernel: IntersectionKernel>(
+    _ scene: CompiledScene<Kernel>, settings: RenderSettings, overlapLimit: Int
+  ) -> (scene: CompiledScene<Kernel>, tiles: ScreenTiles<Kernel>?) {
+    if let tiles = tiles(scene, settings: settings, overlapLimit: overlapLimit)
+    {
+      return (scene, tiles)
+    }
+    return (hierarchical(scene), nil)
+  }
+
+  /// The screen tiles of a scene compiled for projection; nil when it
+  /// projects nothing or `ScreenTiles` declines.
+  static func tiles<Kernel: IntersectionKernel>(
+    _ scene: CompiledScene<Kernel>, settings: RenderSettings, overlapLimit: Int
+  ) -> ScreenTiles<Kernel>? {
+    guard scene.projectsSpheres || scene.projectsTriangles else { return nil }
+    let camera = settings.camera(scene.camera, as: Kernel.Scalar.self)
+    return ScreenTiles(
+      scene, camera: camera, settings: settings, overlapLimit: overlapLimit)
+  }
+
+  /// `scene` searched by hierarchies where it would have projected: they
+  /// depend on the scene alone, not on the view.
+  static func hierarchical<Kernel: IntersectionKernel>(
+    _ scene: CompiledScene<Kernel>
+  ) -> CompiledScene<Kernel> {
+    var scene = scene
+    if scene.projectsSpheres { scene.buildSphereHierarchy() }
+    if scene.projectsTriangles { scene.buildTriangleHierarchy() }
+    return scene
   }
 
   /// Renders with camera rays generated in precision `RayPrecision` and then

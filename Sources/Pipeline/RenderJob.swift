@@ -181,6 +181,14 @@ package enum RenderJob {
         settings, progress: progress, recycling: consume recycled)
       return (result.buffers, result.search, result.triangleSearch)
     }
+    let counts = (
+      compiled.spheres, compiled.planes, compiled.triangles,
+      compiled.ellipsoids
+    )
+    // The compiled scene and the search it kept for repeats (8 bytes for
+    // each triangle in each tile it touches) are let go before the files
+    // are encoded.
+    _ = consume compiled
     var report: RenderReport
     switch rendered.result.buffers {
     case .float(let buffers):
@@ -192,10 +200,8 @@ package enum RenderJob {
         buffers, output, clock: &clock, search: rendered.result.search,
         seconds: rendered.seconds, compileSeconds: compileSeconds)
     }
-    report.spheres = compiled.spheres
-    report.planes = compiled.planes
-    report.triangles = compiled.triangles
-    report.ellipsoids = compiled.ellipsoids
+    (report.spheres, report.planes, report.triangles, report.ellipsoids) =
+      counts
     report.triangleSearch = rendered.result.triangleSearch
     return report
   }
