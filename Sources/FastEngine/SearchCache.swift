@@ -58,10 +58,9 @@ package final class SearchCache<Kernel: IntersectionKernel>: Sendable {
         state.view = view
       }
       if let tiles = state.tiles { return (scene, tiles) }
-      if state.hierarchical == nil {
-        state.hierarchical = Renderer.hierarchical(scene)
-      }
-      return (state.hierarchical!, nil)
+      let hierarchical = state.hierarchical ?? Renderer.hierarchical(scene)
+      state.hierarchical = hierarchical
+      return (hierarchical, nil)
     }
   }
 }

@@ -46,16 +46,6 @@ final class RendererRecyclingTests: XCTestCase {
     return buffers
   }
 
-  func bits(_ buffers: RenderBuffers<Double>) -> [[UInt64]] {
-    [
-      buffers.depth.map(\.bitPattern),
-      buffers.normals.flatMap { [$0.x, $0.y, $0.z] }.map(\.bitPattern),
-      buffers.color.flatMap { [$0.x, $0.y, $0.z] }.map(\.bitPattern),
-      buffers.normalBytes.map(UInt64.init),
-      buffers.colorBytes.map(UInt64.init),
-    ]
-  }
-
   func testRenderOverMarkedBuffers_IsAFreshRender() throws {
     var checked = 0
     for name in ["spheres.txt", "mesh-and-transforms.txt"] {
@@ -73,12 +63,26 @@ final class RendererRecyclingTests: XCTestCase {
             let recycled = Renderer.renderReportingSearch(
               scene, settings: settings, recycling: marked(settings, mark))
             XCTAssertEqual(
-              bits(recycled.buffers), bits(fresh.buffers), "\(label), \(mark)")
+              recycled.buffers.bits, fresh.buffers.bits, "\(label), \(mark)")
             checked += 1
           }
         }
       }
     }
     XCTAssertEqual(checked, 16)
+  }
+}
+
+extension RenderBuffers<Double> {
+  /// Every value's bits and every byte, output by output: equal for two
+  /// renders only if they are the same bit for bit.
+  var bits: [[UInt64]] {
+    [
+      depth.map(\.bitPattern),
+      normals.flatMap { [$0.x, $0.y, $0.z] }.map(\.bitPattern),
+      color.flatMap { [$0.x, $0.y, $0.z] }.map(\.bitPattern),
+      normalBytes.map(UInt64.init),
+      colorBytes.map(UInt64.init),
+    ]
   }
 }

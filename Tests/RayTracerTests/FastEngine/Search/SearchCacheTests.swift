@@ -23,14 +23,6 @@ final class SearchCacheTests: XCTestCase {
       triangleProjectionThreshold: 0, threads: 2)
   }
 
-  func bits(_ buffers: RenderBuffers<Double>) -> [[UInt64]] {
-    [
-      buffers.depth.map(\.bitPattern),
-      buffers.normals.flatMap { [$0.x, $0.y, $0.z] }.map(\.bitPattern),
-      buffers.color.flatMap { [$0.x, $0.y, $0.z] }.map(\.bitPattern),
-    ]
-  }
-
   func testCachedRenders_AreFreshRenders() throws {
     func settings(
       _ width: Int, _ height: Int, samples: Int = 1, style: ImageStyle = .course
@@ -64,7 +56,7 @@ final class SearchCacheTests: XCTestCase {
         let cached = Renderer.renderReportingSearch(
           scene, settings: settings, overlapLimit: limit, cache: cache)
         XCTAssertEqual(
-          bits(cached.buffers), bits(fresh.buffers), "\(name), step \(step)")
+          cached.buffers.bits, fresh.buffers.bits, "\(name), step \(step)")
         XCTAssertEqual(cached.search, fresh.search, "\(name), step \(step)")
         XCTAssertEqual(
           cached.triangleSearch, fresh.triangleSearch, "\(name), step \(step)")
