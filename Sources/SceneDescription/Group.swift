@@ -14,12 +14,9 @@ public struct Group<Scalar: RayScalar>: Hashable, Sendable {
 ///
 /// Spheres and planes are stored inline: boxing each one cost a heap
 /// allocation per object, a fifth of the parse of a million spheres.
-/// Every larger payload is boxed, so that an entry is no bigger than a
-/// sphere (48 bytes in Double): triangles, a mesh file's triangles (one
-/// entry, their arrays: `TriangleMesh`, 88 bytes inline), a shape of
-/// one's own, and a transform, which must be, since it holds an object.
-/// With the meshes inline, the entries of a million spheres took 84 MiB
-/// instead of 46, fresh pages each zeroed by the kernel.
+/// Larger payloads are boxed, so an entry is a sphere and its tag (48
+/// bytes in Double; a mesh inline made it 88, and 10⁶ spheres' entries
+/// 84 MiB rather than 46); a transform must be, since it holds an object.
 public enum SceneObject<Scalar: RayScalar>: Hashable, Sendable {
   case sphere(Sphere<Scalar>)
   case plane(Plane<Scalar>)
