@@ -37,10 +37,10 @@ extension RenderBuffers {
   /// Where a render's threads store its pixels, each once (`written`),
   /// index i being pixel (i mod width, i div width); a buffer not asked
   /// for is empty, and nothing is stored in it.
-  /// Public, with `store` inlinable: a package type's inlinable method is
-  /// not inlined, and as a generic it locked the runtime's metadata cache
-  /// at every pixel (docs/PERFORMANCE.md, "A lock per pixel").
-  public struct Pixels: @unchecked Sendable {
+  /// Inlined `store` (the type `@usableFromInline` for it): as a generic it
+  /// took a runtime lock per pixel (docs/PERFORMANCE.md, "A lock per pixel").
+  @usableFromInline
+  package struct Pixels: @unchecked Sendable {
     @usableFromInline let depth: UnsafeMutableBufferPointer<Scalar>
     @usableFromInline let normals: UnsafeMutableBufferPointer<Vector3<Scalar>>
     @usableFromInline let color: UnsafeMutableBufferPointer<RGB<Scalar>>

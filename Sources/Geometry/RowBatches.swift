@@ -6,7 +6,7 @@ import Foundation
 public enum RowBatches {
   /// Rows per batch: small enough to balance two threads on a 100-row image,
   /// large enough that taking a batch costs nothing next to rendering it.
-  package static let rowsPerBatch = 4
+  public static let rowsPerBatch = 4
 
   /// Runs `body` over all rows in batches on `threads` workers (the calling
   /// thread among them), reporting finished rows to `progress`.
