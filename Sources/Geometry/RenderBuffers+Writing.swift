@@ -46,7 +46,6 @@ extension RenderBuffers {
     @usableFromInline let color: UnsafeMutableBufferPointer<RGB<Scalar>>
 
     @inlinable
-    @_specialize(where Scalar == Double)
     package func store(
       _ pixel: (depth: Scalar, normal: Vector3<Scalar>, color: RGB<Scalar>),
       at i: Int

@@ -72,17 +72,3 @@ final class RendererRecyclingTests: XCTestCase {
     XCTAssertEqual(checked, 16)
   }
 }
-
-extension RenderBuffers<Double> {
-  /// Every value's bits and every byte, output by output: equal for two
-  /// renders only if they are the same bit for bit.
-  var bits: [[UInt64]] {
-    [
-      depth.map(\.bitPattern),
-      normals.flatMap { [$0.x, $0.y, $0.z] }.map(\.bitPattern),
-      color.flatMap { [$0.x, $0.y, $0.z] }.map(\.bitPattern),
-      normalBytes.map(UInt64.init),
-      colorBytes.map(UInt64.init),
-    ]
-  }
-}
