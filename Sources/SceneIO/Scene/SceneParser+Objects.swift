@@ -142,7 +142,8 @@ extension SceneParser {
     guard depth < Self.maximumGroupDepth else {
       throw error(
         at: token,
-        "Groups are nested more than \(Self.maximumGroupDepth) deep")
+        "Groups and Transforms are nested more than "
+          + "\(Self.maximumGroupDepth) deep")
     }
     if tokenizer.matches(token, "Group") {
       return .group(try parseGroup(depth: depth + 1, material: material))

@@ -271,7 +271,7 @@ final class FuzzRegressionTests: XCTestCase {
     assertError(
       Self.camera + String(repeating: level, count: 1_000_000), line: 2,
       column: 1 + depth * level.utf8.count,
-      "Groups are nested more than \(depth) deep")
+      "Groups and Transforms are nested more than \(depth) deep")
   }
 
   // MARK: - Planes

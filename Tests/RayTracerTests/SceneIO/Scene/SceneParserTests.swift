@@ -671,7 +671,20 @@ final class SceneParserTests: XCTestCase {
           + String(repeating: " }", count: SceneParser.maximumGroupDepth + 1),
         line: SceneParser.maximumGroupDepth + 2, column: 1,
         message:
-          "Groups are nested more than \(SceneParser.maximumGroupDepth) deep"),
+          "Groups and Transforms are nested more than "
+          + "\(SceneParser.maximumGroupDepth) deep"),
+      Malformed(
+        name: "transforms nested beyond the maximum depth",
+        text: c + "Group { numObjects 1\n"
+          + String(
+            repeating: "Transform { Translate 0 0 0\n",
+            count: SceneParser.maximumGroupDepth)
+          + s
+          + String(repeating: " }", count: SceneParser.maximumGroupDepth + 1),
+        line: SceneParser.maximumGroupDepth + 2, column: 1,
+        message:
+          "Groups and Transforms are nested more than "
+          + "\(SceneParser.maximumGroupDepth) deep"),
     ]
   }()
 
