@@ -14,31 +14,14 @@ import PlatformSupport
 extension PlistSceneBuilder {
   // MARK: - Values
 
-  /// The file a resource NAME names, as the course's loader finds it:
-  /// `FOLDER/NAME.EXT` beside the scene, then `NAME.EXT` beside it (and
-  /// NAME itself in both places when it already ends in .EXT).
+  /// The file a resource NAME names, as the course's loader finds it
+  /// (`ResourceLookup`).
   func resource(
     _ name: String, folder: String, fileExtension: String, _ path: String
   ) throws(SceneError) -> String {
-    let base: String
-    if let slash = file.lastIndex(of: "/") {
-      base = String(file[...slash])
-    } else {
-      base = ""
-    }
-    var names = [name + "." + fileExtension]
-    if name.hasSuffix("." + fileExtension) { names.insert(name, at: 0) }
-    var candidates: [String] = []
-    for name in names {
-      candidates.append(name.hasPrefix("/") ? name : base + folder + "/" + name)
-    }
-    for name in names where !name.hasPrefix("/") {
-      candidates.append(base + name)
-    }
-    for candidate in candidates
-    where FileManager.default.fileExists(atPath: candidate) {
-      return candidate
-    }
+    let candidates = ResourceLookup.candidates(
+      name, folder: folder, fileExtension: fileExtension, besideScene: file)
+    if let found = ResourceLookup.existing(candidates) { return found }
     throw fail(
       path,
       "no file for \(quoted(.string(name))); tried "

@@ -107,7 +107,10 @@ extension SceneParser {
       switch field {
       case "diffuseColor": diffuse = try parser.color(field)
       case "specularColor": specular = try parser.color(field)
-      case "texture": texture = parser.resolved(try parser.path(after: field).0)
+      case "texture":
+        texture = parser.resolved(
+          try parser.path(after: field).0, folder: "Textures",
+          fileExtension: "bmp")
       default: shininess = try parser.nonNegative(field)
       }
     }

@@ -42,7 +42,7 @@ extension SceneParser {
     guard let (relative, token) = path else {
       throw missing("TriangleMesh", [("obj_file", false)], close)
     }
-    let resolved = resolved(relative)
+    let resolved = resolved(relative, folder: "Meshes", fileExtension: "obj")
     let textured = parsedMaterials.map {
       $0.indices.contains(material) && $0[material].texturePath != nil
     }
@@ -81,6 +81,22 @@ extension SceneParser {
     if relative.hasPrefix("/") { return relative }
     guard let slash = file.lastIndex(of: "/") else { return relative }
     return String(file[...slash]) + relative
+  }
+
+  /// `resolved(relative)`, or, when that names no file, the first file of
+  /// the course's loader's lookup by name that exists (`ResourceLookup`:
+  /// `obj_file cube` finds `Meshes/cube.obj`, as a property list's
+  /// `objFile` does). Nothing found: the path as written, whose reading
+  /// then says what is wrong with it.
+  func resolved(
+    _ relative: String, folder: String, fileExtension: String
+  ) -> String {
+    let literal = resolved(relative)
+    if ResourceLookup.existing([literal]) != nil { return literal }
+    return ResourceLookup.existing(
+      ResourceLookup.candidates(
+        relative, folder: folder, fileExtension: fileExtension,
+        besideScene: file)) ?? literal
   }
 
   /// The hot path of large scenes: keywords are compared as bytes, and
