@@ -660,32 +660,25 @@ final class SceneParserTests: XCTestCase {
         text: "PerspectiveCamera { center 0 0", line: 1, column: 31,
         message: "expected a number, found 'end of file'"),
 
-      // Nesting.
-      Malformed(
-        name: "nesting beyond the maximum depth",
-        text: c
-          + String(
-            repeating: "Group { numObjects 1\n",
-            count: SceneParser.maximumGroupDepth + 1)
-          + s
-          + String(repeating: " }", count: SceneParser.maximumGroupDepth + 1),
-        line: SceneParser.maximumGroupDepth + 2, column: 1,
-        message:
-          "Groups and Transforms are nested more than "
-          + "\(SceneParser.maximumGroupDepth) deep"),
-      Malformed(
-        name: "transforms nested beyond the maximum depth",
-        text: c + "Group { numObjects 1\n"
-          + String(
-            repeating: "Transform { Translate 0 0 0\n",
-            count: SceneParser.maximumGroupDepth)
-          + s
-          + String(repeating: " }", count: SceneParser.maximumGroupDepth + 1),
-        line: SceneParser.maximumGroupDepth + 2, column: 1,
-        message:
-          "Groups and Transforms are nested more than "
-          + "\(SceneParser.maximumGroupDepth) deep"),
+      // Nesting: one level more than the limit, of groups alone or of
+      // transforms inside a group, fails at the level past it.
     ]
+      + [
+        ("nesting beyond the maximum depth", "Group { numObjects 1\n"),
+        (
+          "transforms nested beyond the maximum depth",
+          "Transform { Translate 0 0 0\n"
+        ),
+      ].map { name, level in
+        let depth = SceneParser.maximumGroupDepth
+        return Malformed(
+          name: name,
+          text: c + "Group { numObjects 1\n"
+            + String(repeating: level, count: depth) + s
+            + String(repeating: " }", count: depth + 1),
+          line: depth + 2, column: 1,
+          message: "Groups and Transforms are nested more than \(depth) deep")
+      }
   }()
 
   /// Each malformed input fails with its exact message, at its exact line
