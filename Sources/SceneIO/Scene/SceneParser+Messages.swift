@@ -65,11 +65,9 @@ extension SceneParser {
     _ token: SceneToken, expected: String, choices: [String]
   ) -> SceneError {
     let word = text(token)
-    if Self.unsupportedBlocks.contains(word) {
+    if let instead = Self.unsupportedBlocks[word] {
       return error(
-        at: token,
-        "'\(word)' is not supported: raytrace renders spheres and planes "
-          + "with a PerspectiveCamera")
+        at: token, "'\(word)' is not supported: raytrace's \(instead)")
     }
     if tokenizer.number(token) != nil {
       return error(at: token, "expected \(expected), found the number \(word)")

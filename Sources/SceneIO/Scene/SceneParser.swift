@@ -35,13 +35,26 @@ package struct SceneParser {
   /// most n / 19 objects, however they nest.
   static let minimumObjectLength = 19
 
-  /// Blocks of the course's later assignments: named in the error, so a user
-  /// knows the scene is valid but beyond this renderer.
-  static let unsupportedBlocks: Set<String> = [
-    "OrthographicCamera", "texture", "bump", "CheckerBoard", "Noise", "Marble",
-    "Wood",
-    "PerlinNoise", "Checkerboard", "Box", "Cylinder", "Cone",
-  ]
+  /// Blocks of the course's later assignments: named in the error, with
+  /// what raytrace has in their place, so a user knows the scene is valid
+  /// but beyond this renderer.
+  static let unsupportedBlocks: [String: String] = {
+    var blocks = ["OrthographicCamera": "one camera is PerspectiveCamera"]
+    for name in ["texture", "bump", "CheckerBoard", "Checkerboard", "Noise"]
+      + ["PerlinNoise", "Marble", "Wood"]
+    {
+      blocks[name] =
+        "materials are Material and PhongMaterial, "
+        + "with an image as an optional texture"
+    }
+    for name in ["Box", "Cylinder", "Cone"] {
+      blocks[name] =
+        "shapes are Sphere, Plane, Triangle and TriangleMesh, "
+        + "in Groups and Transforms (a shape of your own: "
+        + "docs/ADDING-A-SHAPE.md)"
+    }
+    return blocks
+  }()
 
   var tokenizer: SceneTokenizer
   let file: String

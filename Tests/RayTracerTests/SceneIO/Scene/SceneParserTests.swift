@@ -398,8 +398,22 @@ final class SceneParserTests: XCTestCase {
         name: "OrthographicCamera", text: "OrthographicCamera { }", line: 1,
         column: 1,
         message:
-          "'OrthographicCamera' is not supported: raytrace renders spheres "
-          + "and planes with a PerspectiveCamera"),
+          "'OrthographicCamera' is not supported: raytrace's one camera is "
+          + "PerspectiveCamera"),
+      Malformed(
+        name: "a procedural material",
+        text: c + "Materials { numMaterials 1 "
+          + "Marble { } }", line: 2, column: 28,
+        message:
+          "'Marble' is not supported: raytrace's materials are Material and "
+          + "PhongMaterial, with an image as an optional texture"),
+      Malformed(
+        name: "a shape of a later assignment",
+        text: c + "Group { numObjects 1 Box { } }", line: 2, column: 22,
+        message:
+          "'Box' is not supported: raytrace's shapes are Sphere, Plane, "
+          + "Triangle and TriangleMesh, in Groups and Transforms (a shape of "
+          + "your own: docs/ADDING-A-SHAPE.md)"),
       Malformed(
         name: "missing brace", text: c + "Group numObjects 0 }", line: 2,
         column: 7,
