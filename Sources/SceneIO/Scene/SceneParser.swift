@@ -40,9 +40,11 @@ package struct SceneParser {
   /// but beyond this renderer.
   static let unsupportedBlocks: [String: String] = {
     var blocks = ["OrthographicCamera": "one camera is PerspectiveCamera"]
-    for name in ["texture", "bump", "CheckerBoard", "Checkerboard", "Noise"]
-      + ["PerlinNoise", "Marble", "Wood"]
-    {
+    let materials = [
+      "texture", "bump", "CheckerBoard", "Checkerboard", "Noise",
+      "PerlinNoise", "Marble", "Wood",
+    ]
+    for name in materials {
       blocks[name] =
         "materials are Material and PhongMaterial, "
         + "with an image as an optional texture"
