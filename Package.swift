@@ -149,9 +149,11 @@ let package = Package(
   //   FastEngine        the fast engine: records, search structures
   //   Pipeline          read, check, render with an engine, encode, commit
   //   Measurement       `raytrace report`, `bench`, `compare`, the check
+  //                     (beside Pipeline, not above it: SwiftPM starts a
+  //                     target only when those below it are compiled)
   //   raytrace          the executable: arguments and messages
   // Course needs only the leaf and the description: editing it rebuilds
-  // only it, its tests, the pipeline and the executable.
+  // only it, its tests, the pipeline, the measurements and the executable.
   targets: standIns + [
     // The system zlib (zlib1g-dev on Debian, part of the SDK on macOS).
     .systemLibrary(
@@ -195,7 +197,7 @@ let package = Package(
       name: "Measurement",
       dependencies: [
         "Course", "Geometry", "SceneDescription", "Numerics", "PlatformSupport", "SceneIO",
-        "FastEngine", "Pipeline", realModule,
+        "FastEngine", realModule,
       ]
     ),
     .executableTarget(

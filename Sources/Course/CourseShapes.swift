@@ -1,4 +1,3 @@
-import Geometry
 import SceneDescription
 
 /// The kinds of object the course adds to the ones the readers know

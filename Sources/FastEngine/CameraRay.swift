@@ -1,7 +1,5 @@
 import Geometry
-import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// A camera ray as the render loop uses it: in the kernel's frame, with the
 /// per-ray quantities every primitive test needs computed once.

@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// The ellipsoids' search: one by one, or through a hierarchy of their
 /// own when there are many, left where they are in `ellipsoids` and reached

@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// Triangles much larger than their distance from the eye (`TrianglePlane`):
 /// kept after the others in `triangles`, outside the hierarchy, and tested

@@ -1,7 +1,5 @@
 import Geometry
-import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// The search of a scene's layers: objects its common scale cannot hold,
 /// traced at their own (`LengthScale.layers`).

@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// A triangle as the loop tests it: vertices in the kernel's frame. Its
 /// shading (material, vertex normals, texture coordinates) is kept beside

@@ -1,7 +1,5 @@
 import Geometry
-import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// The nearest hit of one camera ray: the spheres by a search of the
 /// render's choice, then planes, triangles, ellipsoids and the other

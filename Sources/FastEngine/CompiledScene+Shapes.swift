@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// Shapes of kinds the fast engine does not specialise (`SceneObject.shape`,
 /// docs/ADDING-A-SHAPE.md): tested after its own kinds, through each

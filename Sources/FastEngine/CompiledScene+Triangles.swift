@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// The ordinary triangles' searches: through their hierarchy, one by one,
 /// or projected onto screen tiles (`ScreenTiles`), each pixel's ray then

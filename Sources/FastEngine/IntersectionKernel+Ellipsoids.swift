@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// A sphere under a non-similarity transform, stored in its own space, the
 /// course's way: rays carried there by M⁻¹ (the eye once, in Double; the

@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// The nearest hit along one ray so far, and the tie rule every search of
 /// the fast engine keeps.

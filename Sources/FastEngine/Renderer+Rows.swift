@@ -1,7 +1,4 @@
 import Geometry
-import SceneDescription
-import Numerics
-import PlatformSupport
 
 /// The fast engine's rows, handed out as the course engine's are
 /// (`RowBatches`).

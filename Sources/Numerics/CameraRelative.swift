@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import PlatformSupport
 
 /// The constants a camera-relative intersection needs, computed from the
 /// scene's values in twice their precision and rounded once to the render's.

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import PlatformSupport
 
 /// Error-free transformations and the sums and dot products built on them
 /// (Ogita, Rump and Oishi, "Accurate sum and dot product", SIAM J. Sci.

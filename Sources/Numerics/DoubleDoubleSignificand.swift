@@ -1,6 +1,4 @@
 import Geometry
-import SceneDescription
-import PlatformSupport
 
 /// A 128-bit unsigned integer: the raw significand of a `DoubleDouble`
 /// (its 105 fraction bits, as `significandBitPattern` and in

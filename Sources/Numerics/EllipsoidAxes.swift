@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import PlatformSupport
 
 /// The principal axes of an ellipsoid M·{P : |P − c| = r}: the world unit
 /// directions u₀, u₁, u₂ and the semi-axis lengths A₀, A₁, A₂, so that a

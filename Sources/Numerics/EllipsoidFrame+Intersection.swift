@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import PlatformSupport
 
 /// A camera ray's test of an ellipsoid in its unit-sphere frame
 /// (`EllipsoidFrame`): the stable quadratic of `SphereIntersection`, with

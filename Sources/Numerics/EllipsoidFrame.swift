@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import PlatformSupport
 
 /// An ellipsoid as a camera ray's test sees it: in the frame of its axes
 /// (`EllipsoidAxes`), each divided by its semi-axis, where it is the unit

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import PlatformSupport
 
 /// The limits of rescaling: what no power of two can bring into the
 /// render precision's range (see `LengthScale`).

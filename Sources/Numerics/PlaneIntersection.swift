@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import PlatformSupport
 
 /// The two ways of solving n·(o + t·d) = offset for t, shared by the
 /// package `Plane` and the fast engine, as `SphereIntersection` is for

@@ -1,6 +1,4 @@
 import Geometry
-import SceneDescription
-import PlatformSupport
 
 #if (arch(i386) || arch(x86_64)) && !os(Windows) && !os(Android)
   /// The reference precision: Float80 (64-bit significand, IEEE) where the

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import PlatformSupport
 
 /// The two ways of solving |o + t·d − centre|² = r² for t, shared by the
 /// package `Sphere` and the render loop.

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import PlatformSupport
 
 /// Triangles much larger than their distance from the ray's origin.
 ///

@@ -1,9 +1,4 @@
 import Geometry
-import SceneDescription
-import Course
-import Numerics
-import PlatformSupport
-import SceneIO
 import FastEngine
 
 /// The two renderers, which draw the same scene within a stated bound

@@ -1,7 +1,6 @@
 import Course
 import FastEngine
 import Geometry
-import Numerics
 import SceneDescription
 
 /// `--check`'s renders: each engine once, every output kept, in Double.

@@ -1,4 +1,3 @@
-import FastEngine
 import Pipeline
 import Measurement
 import SceneIO

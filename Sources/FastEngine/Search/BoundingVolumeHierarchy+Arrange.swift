@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 extension BoundingVolumeHierarchy {
   /// Puts `elements`, given in the original order, into leaf order in

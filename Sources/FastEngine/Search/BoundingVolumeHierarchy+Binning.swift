@@ -1,7 +1,5 @@
 import Geometry
-import SceneDescription
 import Numerics
-import PlatformSupport
 
 // The binned surface-area heuristic's bookkeeping: the boxes, bounds and
 // bins a build partitions.

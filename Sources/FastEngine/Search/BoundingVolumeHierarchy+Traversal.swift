@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 // Traversal: the nearest hit of one ray, equal to testing every primitive.
 

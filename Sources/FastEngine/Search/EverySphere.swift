@@ -1,7 +1,5 @@
 import Geometry
-import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// The flat loop: every sphere, in scene order.
 struct EverySphere: NearestSphereSearch {

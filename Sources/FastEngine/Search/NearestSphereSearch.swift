@@ -1,7 +1,3 @@
-import Geometry
-import SceneDescription
-import Numerics
-import PlatformSupport
 
 /// How a camera ray's nearest sphere is found: the one interface of the
 /// per-ray sphere searches, each in its own file of this folder.

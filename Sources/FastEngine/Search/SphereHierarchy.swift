@@ -1,7 +1,5 @@
 import Geometry
-import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// The scene's bounding volume hierarchy of spheres: the four-wide tree
 /// where it can answer for the ray, else the binary one.

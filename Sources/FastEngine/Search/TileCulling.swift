@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// The spheres a tile of pixels' rays may hit (`CompiledScene.cullSpheres`),
 /// in scene order: for scenes too small for a hierarchy or screen

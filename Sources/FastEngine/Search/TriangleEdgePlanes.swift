@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// A conservative first look at whether a ray from the eye misses a
 /// triangle: the three planes through the eye and each of its edges, and

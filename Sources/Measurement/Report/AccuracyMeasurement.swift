@@ -4,7 +4,6 @@ import SceneIO
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// How far a render's depth and normals are from the reference path's, per
 /// pixel and in summary.

@@ -1,10 +1,7 @@
 import RealModule
-import FastEngine
 import SceneIO
 import Geometry
-import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// Per-pixel error in false colour, with a legend, for `raytrace report
 /// --heatmaps`.

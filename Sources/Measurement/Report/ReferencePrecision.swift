@@ -1,9 +1,7 @@
-import FastEngine
 import SceneIO
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// The precision the accuracy reference intersects in, as chosen on the
 /// command line (`raytrace report --reference`).

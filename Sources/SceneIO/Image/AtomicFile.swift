@@ -1,7 +1,5 @@
 import Geometry
-import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// Why an output file could not be written; the description is one sentence
 /// naming the path and the system's reason.

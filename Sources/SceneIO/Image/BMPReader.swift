@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// Reads uncompressed Windows bitmaps, the course's texture files: 24-bit
 /// (BGR) and 32-bit (BGRA or BGRX, alpha dropped) pixels, rows stored

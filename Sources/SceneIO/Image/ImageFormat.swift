@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// The file formats an output can take, chosen by the path's extension.
 package enum ImageFormat: String, CaseIterable, Sendable {

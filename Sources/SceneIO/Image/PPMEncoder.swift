@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// Binary PPM (P6): a text header, then RGB bytes row by row from the top.
 package enum PPMEncoder {

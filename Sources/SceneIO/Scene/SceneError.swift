@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// A problem with a scene file, reported as one line in the form compilers
 /// use, `FILE:LINE:COLUMN: error: message`, so that editors can jump to it.

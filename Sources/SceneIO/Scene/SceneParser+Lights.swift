@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// The text format's Lights, Background and Materials blocks.
 extension SceneParser {

@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// Kinds of object the readers learn from their caller
 /// (`SceneOptions.shapes`, docs/ADDING-A-SHAPE.md), in the text format.

@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// What a Transform makes of its object, checked against the render's
 /// precision: its matrix and inverse, and the moved geometry. Shared by

@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// Reads a scene file in either format, recognised by its content: a
 /// property list (XML or binary, the Swift course's files; see

@@ -1,7 +1,6 @@
 import Geometry
 import SceneDescription
 import Numerics
-import PlatformSupport
 
 /// A mesh file's triangles as the scene keeps them (`TriangleMesh`).
 extension TriangleMesh<Double> {
