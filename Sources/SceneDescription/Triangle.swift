@@ -89,7 +89,8 @@ public struct Triangle<Scalar: RayScalar>: Hashable, Sendable {
   }
 
   /// The unit normal of the winding, (v1 − v0) × (v2 − v0) normalised, or
-  /// nil when the triangle is degenerate (see `isDegenerate`).
+  /// nil when the triangle is degenerate (collinear or repeated vertices, or
+  /// a non-finite coordinate): such a triangle is never hit.
   ///
   /// The edges are scaled by a power of two (exactly) before the cross
   /// product, so that neither huge nor tiny triangles overflow or underflow
@@ -109,25 +110,5 @@ public struct Triangle<Scalar: RayScalar>: Hashable, Sendable {
     let normal = (e1 * scale).cross(e2 * scale)
     guard normal.maxMagnitude > 0, normal.isFinite else { return nil }
     return normal.normalized()
-  }
-
-  /// Whether the triangle has no area as computed: a repeated vertex,
-  /// collinear vertices (to rounding of the cross product), or a
-  /// non-finite coordinate. Degenerate triangles are never hit, so a
-  /// compiled scene may drop them.
-  @inlinable
-  public var isDegenerate: Bool { geometricNormal == nil }
-
-  /// The shading normal at barycentrics (u, v, w): the interpolated vertex
-  /// normal when there are vertex normals and it is not zero (opposed
-  /// normals can cancel), otherwise `geometric`.
-  @inlinable
-  public func shadingNormal(
-    u: Scalar, v: Scalar, w: Scalar, geometric: Vector3<Scalar>
-  ) -> Vector3<Scalar> {
-    guard let normals = vertexNormals else { return geometric }
-    let blended = normals.n0 * u + normals.n1 * v + normals.n2 * w
-    guard blended.maxMagnitude > 0, blended.isFinite else { return geometric }
-    return blended.normalized()
   }
 }

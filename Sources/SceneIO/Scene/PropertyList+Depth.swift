@@ -68,24 +68,6 @@ extension PropertyList {
     16 * size + 1000
   }
 
-  /// The nesting depth of a binary property list (`bplist00`), 1 for a
-  /// top object that holds no array, set or dictionary and more than
-  /// `maximumDepth` for a list whose references form a cycle; and how many
-  /// objects a decode visits, each reference to a shared object counted
-  /// (saturating far above any limit). Nil when its trailer or object table
-  /// point outside the file.
-  ///
-  /// Iterative, with each object's depth and visits computed once, so
-  /// neither the file's nesting nor objects shared between containers cost
-  /// stack or time beyond one visit of each reference; every size is
-  /// checked before it is multiplied, so no count a file claims overflows.
-  static func binaryShape(_ bytes: [UInt8]) -> (depth: Int, visits: Int)? {
-    switch binaryReading(bytes) {
-    case .shape(let depth, let visits): (depth, visits)
-    case .unsupported, .malformed: nil
-    }
-  }
-
   /// What the check of a binary list finds.
   enum BinaryReading: Equatable {
     case shape(depth: Int, visits: Int)
@@ -96,7 +78,18 @@ extension PropertyList {
     case malformed
   }
 
-  /// `binaryShape`, and why a list is refused.
+  /// The nesting depth of a binary property list (`bplist00`), 1 for a
+  /// top object that holds no array, set or dictionary and more than
+  /// `maximumDepth` for a list whose references form a cycle; and how many
+  /// objects a decode visits, each reference to a shared object counted
+  /// (saturating far above any limit). Malformed when its trailer or
+  /// object table point outside the file; unsupported, with the reason, when
+  /// it holds what no scene holds.
+  ///
+  /// Iterative, with each object's depth and visits computed once, so
+  /// neither the file's nesting nor objects shared between containers cost
+  /// stack or time beyond one visit of each reference; every size is
+  /// checked before it is multiplied, so no count a file claims overflows.
   static func binaryReading(_ bytes: [UInt8]) -> BinaryReading {
     var unsupported: String?
     guard let shape = binaryShapeChecking(bytes, unsupported: &unsupported)

@@ -285,3 +285,12 @@ final class PlistHostileTests: XCTestCase {
 }
 
 private let projectFolder = ProjectFiles.projectFolder
+
+extension PropertyList {
+  /// A binary list's depth and visits, nil when it is refused.
+  static func binaryShape(_ bytes: [UInt8]) -> (depth: Int, visits: Int)? {
+    guard case .shape(let depth, let visits) = binaryReading(bytes)
+    else { return nil }
+    return (depth, visits)
+  }
+}
