@@ -36,95 +36,58 @@ package struct Workload: Sendable {
 
   /// The workloads of the README's table: the course-like scene at two
   /// sizes, random spheres from 100 to 10⁶, what leaving outputs out saves,
-  /// and one thread against all.
-  package static let standard: [Workload] = [
-    Workload(
-      name: "course scene", source: .file("scenes/spheres.txt"), width: 800,
-      height: 800, outputs: [.depth, .normals]),
-    Workload(
-      name: "course scene", source: .file("scenes/spheres.txt"), width: 800,
-      height: 800, outputs: [.depth, .normals, .shaded]),
-    Workload(
-      name: "course scene", source: .file("scenes/spheres.txt"), width: 800,
-      height: 800, threads: 1, outputs: [.depth, .normals, .shaded]),
-    Workload(
-      name: "course scene", source: .file("scenes/spheres.txt"), width: 3840,
-      height: 2160, outputs: [.depth, .normals, .shaded]),
-    Workload(
-      name: "random spheres", source: .randomSpheres(100), width: 1920,
-      height: 1080, outputs: [.depth, .normals]),
-    Workload(
-      name: "random spheres", source: .randomSpheres(10_000), width: 1920,
-      height: 1080, outputs: [.depth]),
-    Workload(
-      name: "random spheres", source: .randomSpheres(10_000), width: 1920,
-      height: 1080, outputs: [.depth, .normals]),
-    Workload(
-      name: "random spheres", source: .randomSpheres(10_000), width: 1920,
-      height: 1080, outputs: [.depth, .normals, .shaded]),
-    Workload(
-      name: "random spheres", source: .randomSpheres(10_000), width: 1920,
-      height: 1080, threads: 1, outputs: [.depth, .normals]),
-    Workload(
-      name: "random spheres", source: .randomSpheres(1_000_000), width: 1920,
-      height: 1080, outputs: [.depth, .normals]),
-    Workload(
-      name: "course scene", source: .file("scenes/spheres.txt"), width: 800,
-      height: 800, outputs: [.shaded], samples: 16),
-    Workload(
-      name: "random spheres", source: .randomSpheres(10_000), width: 1920,
-      height: 1080, outputs: [.shaded], samples: 16),
-    Workload(
-      name: "mesh", source: .randomMesh(1_000), width: 1920, height: 1080,
-      outputs: [.depth, .normals]),
-    Workload(
-      name: "mesh", source: .randomMesh(1_000), width: 1920, height: 1080,
-      outputs: [.shaded], samples: 16),
-    Workload(
-      name: "mesh", source: .randomMesh(1_000), width: 1920, height: 1080,
-      outputs: [.depth, .normals], samples: 16, samplesAllOutputs: true),
-    Workload(
-      name: "mesh", source: .randomMesh(100_000), width: 1920, height: 1080,
-      outputs: [.depth, .normals]),
-    Workload(
-      name: "mesh", source: .randomMesh(100_000), width: 1920, height: 1080,
-      outputs: [.shaded], samples: 16),
-    Workload(
-      name: "mesh", source: .randomMesh(100_000), width: 1920, height: 1080,
-      outputs: [.depth, .normals], samples: 16, samplesAllOutputs: true),
-    Workload(
-      name: "mesh", source: .randomMesh(1_000_000), width: 1920, height: 1080,
-      outputs: [.depth, .normals]),
-    Workload(
-      name: "mesh", source: .randomMesh(1_000_000), width: 1920, height: 1080,
-      outputs: [.shaded], samples: 16),
-    Workload(
-      name: "mesh", source: .randomMesh(1_000_000), width: 1920, height: 1080,
-      outputs: [.depth, .normals], samples: 16, samplesAllOutputs: true),
-    Workload(
-      name: "mesh", source: .randomMesh(5_000_000), width: 1920, height: 1080,
-      outputs: [.depth, .normals]),
-    Workload(
-      name: "bunny_1k", source: .reference("scene06_bunny_1k.txt"),
-      width: 800, height: 800, outputs: [.depth, .normals]),
-    Workload(
-      name: "bunny_1k", source: .reference("scene06_bunny_1k.txt"),
-      width: 800, height: 800, outputs: [.shaded], samples: 16),
-    Workload(
-      name: "bunny_1k", source: .reference("scene06_bunny_1k.txt"),
-      width: 800, height: 800, outputs: [.depth, .normals], samples: 16,
-      samplesAllOutputs: true),
-    Workload(
-      name: "arch", source: .reference("scene07_arch.txt"), width: 800,
-      height: 800, outputs: [.depth, .normals]),
-    Workload(
-      name: "arch", source: .reference("scene07_arch.txt"), width: 800,
-      height: 800, outputs: [.shaded], samples: 16),
-    Workload(
-      name: "arch", source: .reference("scene07_arch.txt"), width: 800,
-      height: 800, outputs: [.depth, .normals], samples: 16,
-      samplesAllOutputs: true),
-  ]
+  /// one thread against all, 16 samples a pixel, and meshes and the MIT
+  /// scenes like for like with the peer (`likeForLike`).
+  package static let standard: [Workload] = {
+    let course = Source.file("scenes/spheres.txt")
+    let spheres = "random spheres"
+    let aov: RenderOutputs = [.depth, .normals]
+    let all: RenderOutputs = [.depth, .normals, .shaded]
+    func row(
+      _ name: String, _ source: Source, _ width: Int, _ height: Int,
+      _ outputs: RenderOutputs, threads: Int? = nil, samples: Int = 1,
+      samplesAllOutputs: Bool = false
+    ) -> Workload {
+      Workload(
+        name: name, source: source, width: width, height: height,
+        threads: threads, outputs: outputs, samples: samples,
+        samplesAllOutputs: samplesAllOutputs)
+    }
+    /// One sample of depth and normals, 16 of the shaded image, and 16 of
+    /// depth and normals: a peer's AOVs, its shading, its supersampled AOVs.
+    func likeForLike(
+      _ name: String, _ source: Source, _ width: Int, _ height: Int
+    ) -> [Workload] {
+      [
+        row(name, source, width, height, aov),
+        row(name, source, width, height, [.shaded], samples: 16),
+        row(
+          name, source, width, height, aov, samples: 16,
+          samplesAllOutputs: true),
+      ]
+    }
+    let first = [
+      row("course scene", course, 800, 800, aov),
+      row("course scene", course, 800, 800, all),
+      row("course scene", course, 800, 800, all, threads: 1),
+      row("course scene", course, 3840, 2160, all),
+      row(spheres, .randomSpheres(100), 1920, 1080, aov),
+      row(spheres, .randomSpheres(10_000), 1920, 1080, [.depth]),
+      row(spheres, .randomSpheres(10_000), 1920, 1080, aov),
+      row(spheres, .randomSpheres(10_000), 1920, 1080, all),
+      row(spheres, .randomSpheres(10_000), 1920, 1080, aov, threads: 1),
+      row(spheres, .randomSpheres(1_000_000), 1920, 1080, aov),
+      row("course scene", course, 800, 800, [.shaded], samples: 16),
+      row(spheres, .randomSpheres(10_000), 1920, 1080, [.shaded], samples: 16),
+    ]
+    let meshes = [1_000, 100_000, 1_000_000].flatMap {
+      likeForLike("mesh", .randomMesh($0), 1920, 1080)
+    }
+    return first + meshes
+      + [row("mesh", .randomMesh(5_000_000), 1920, 1080, aov)]
+      + likeForLike("bunny_1k", .reference("scene06_bunny_1k.txt"), 800, 800)
+      + likeForLike("arch", .reference("scene07_arch.txt"), 800, 800)
+  }()
 
   package init(
     name: String, source: Source, width: Int, height: Int, threads: Int? = nil,
