@@ -11,12 +11,6 @@ struct TriangleRecord<Scalar: RayScalar>: Sendable {
   var v1: Vector3<Scalar>
   var v2: Vector3<Scalar>
 
-  init(v0: Vector3<Scalar>, v1: Vector3<Scalar>, v2: Vector3<Scalar>) {
-    self.v0 = v0
-    self.v1 = v1
-    self.v2 = v2
-  }
-
   /// The winding's unit normal (`Triangle.geometricNormal`); nil for a
   /// degenerate triangle.
   var geometricNormal: Vector3<Scalar>? {

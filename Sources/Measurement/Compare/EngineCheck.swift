@@ -18,16 +18,6 @@ package struct EngineCheck {
     package var t: Double
     package var normal: Vector3<Double>
 
-    package init(
-      index: Int, kind: String, materialIndex: Int, t: Double,
-      normal: Vector3<Double>
-    ) {
-      self.index = index
-      self.kind = kind
-      self.materialIndex = materialIndex
-      self.t = t
-      self.normal = normal
-    }
   }
 
   /// One output's comparison, and its first differing pixel's report.

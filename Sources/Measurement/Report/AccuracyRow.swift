@@ -20,22 +20,6 @@ package struct AccuracyRow: Sendable {
   /// The precision's unit roundoff's double: 2^−23 or 2^−52.
   package var epsilon: Double
 
-  package init(
-    scene: String, precision: Precision, method: ReportedMethod, width: Int,
-    height: Int, seconds: Double, timeOverNaive: Double,
-    measurement: AccuracyMeasurement, epsilon: Double
-  ) {
-    self.scene = scene
-    self.precision = precision
-    self.method = method
-    self.width = width
-    self.height = height
-    self.seconds = seconds
-    self.timeOverNaive = timeOverNaive
-    self.measurement = measurement
-    self.epsilon = epsilon
-  }
-
   package var megaraysPerSecond: Double {
     Double(width * height) / seconds / 1e6
   }

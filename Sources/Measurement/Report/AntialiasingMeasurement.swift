@@ -63,18 +63,6 @@ package struct AntialiasingRow: Sendable {
   package var seconds: Double
   package var measurement: AntialiasingMeasurement
 
-  package init(
-    scene: String, width: Int, height: Int, samples: Int, seconds: Double,
-    measurement: AntialiasingMeasurement
-  ) {
-    self.scene = scene
-    self.width = width
-    self.height = height
-    self.samples = samples
-    self.seconds = seconds
-    self.measurement = measurement
-  }
-
   /// The samples per pixel of the rows, and of the reference.
   package static let sampleCounts = [1, 4, 16, 64]
   package static let referenceSamples = 1024

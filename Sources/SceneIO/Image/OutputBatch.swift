@@ -28,13 +28,6 @@ package final class OutputBatch {
       rename: { Platform.renameFile($0, $1) },
       link: { Platform.linkFile($0, $1) })
 
-    package init(
-      rename: @escaping @Sendable (String, String) -> Int32,
-      link: @escaping @Sendable (String, String) -> Int32
-    ) {
-      self.rename = rename
-      self.link = link
-    }
   }
 
   package let paths: [String]
@@ -130,7 +123,8 @@ package final class OutputBatch {
   /// file in a sticky folder (/tmp) that belongs to another user.
   static func checkReplaceable(_ path: String) throws(OutputError) {
     let slash = path.lastIndex(of: "/")
-    let folder = slash.map { $0 == path.startIndex ? "/" : String(path[..<$0]) }
+    let folder =
+      slash.map { $0 == path.startIndex ? "/" : String(path[..<$0]) }
       ?? "."
     let name = slash.map { String(path[path.index(after: $0)...]) } ?? path
     let limit = Platform.nameLimit(inFolder: folder)

@@ -25,11 +25,6 @@ package struct PNGOptions: Hashable, Sendable {
   package var compressionLevel: Int32
   package var filter: PNGFilter
 
-  package init(compressionLevel: Int32, filter: PNGFilter) {
-    self.compressionLevel = compressionLevel
-    self.filter = filter
-  }
-
   /// Chosen by measurement on the project's scenes (see the README's PNG
   /// table): ray-cast images are large flat areas and smooth gradients, which
   /// `up` plus a fast zlib level compresses nearly as well as level 9 with

@@ -64,11 +64,6 @@ struct PlistSceneBuilder {
   /// geometry it moves, as in the text format.
   var openTransforms = 0
 
-  init(file: String, options: SceneOptions) {
-    self.file = file
-    self.options = options
-  }
-
   mutating func scene(_ root: PropertyList) throws(SceneError) -> Scene {
     let top = try dictionary(root, "the property list")
     try checkKeys(

@@ -43,10 +43,6 @@ extension PropertyList {
     var open: [(name: String, line: Int)] = []
     var depth = 0
 
-    init(bytes: [UInt8]) {
-      self.bytes = bytes
-    }
-
     mutating func scan() -> XMLProblem? {
       let count = bytes.count
       while index < count {
