@@ -89,11 +89,25 @@ package enum Platform {
     #endif
   }
 
-  /// `write(2)`: the count written, or −1 with `errno` set.
-  package static func writeBytes(
-    _ descriptor: Int32, _ bytes: UnsafeRawPointer, _ count: Int
-  ) -> Int {
-    write(descriptor, bytes, count)
+  /// Writes all of `bytes` to `descriptor` with write(2), again after an
+  /// interruption: nil when every byte is written, otherwise why not (the
+  /// C library's words for `errno`, or "nothing written" when a write
+  /// wrote nothing, rather than trying forever).
+  package static func writeAll(_ descriptor: Int32, _ bytes: [UInt8])
+    -> String?
+  {
+    var written = 0
+    while written < bytes.count {
+      let result = bytes[written...].withUnsafeBytes {
+        write(descriptor, $0.baseAddress, $0.count)
+      }
+      if result < 0 && errno == EINTR { continue }
+      guard result > 0 else {
+        return result < 0 ? String(cString: strerror(errno)) : "nothing written"
+      }
+      written += result
+    }
+    return nil
   }
 
   /// A new pipe's two descriptors (read, write), or nil.

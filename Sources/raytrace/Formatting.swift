@@ -15,21 +15,10 @@ enum StandardOutput {
   nonisolated(unsafe) static var failure: String?
 
   static func write(_ line: String) {
-    let bytes = Array((line + "\n").utf8)
-    var written = 0
-    while written < bytes.count {
-      let result = bytes[written...].withUnsafeBytes {
-        PlatformSupport.write(1, $0.baseAddress, $0.count)
-      }
-      if result < 0 && errno == EINTR { continue }
-      guard result > 0 else {
-        if failure == nil {
-          failure =
-            result < 0 ? String(cString: strerror(errno)) : "nothing written"
-        }
-        return
-      }
-      written += result
+    if let reason = Platform.writeAll(1, Array((line + "\n").utf8)),
+      failure == nil
+    {
+      failure = reason
     }
   }
 }
@@ -43,15 +32,7 @@ func printOutput(_ line: String = "") {
 func printError(_ line: String) {
   // write(2) rather than fputs(stderr): the C global is shared mutable
   // state to Swift 6, and one unbuffered write keeps the line whole.
-  let bytes = Array((line + "\n").utf8)
-  var written = 0
-  while written < bytes.count {
-    let result = bytes[written...].withUnsafeBytes {
-      write(2, $0.baseAddress, $0.count)
-    }
-    if result <= 0 { return }
-    written += result
-  }
+  _ = Platform.writeAll(2, Array((line + "\n").utf8))
 }
 
 func seconds(_ value: Double) -> String {

@@ -262,18 +262,8 @@ package final class OutputBatch {
   private static func writeWhole(
     _ bytes: [UInt8], to descriptor: Int32, reportingAs path: String
   ) throws(OutputError) {
-    var written = 0
-    while written < bytes.count {
-      let result = bytes.withUnsafeBytes { buffer -> Int in
-        guard let base = buffer.baseAddress else { return 0 }
-        return Platform.writeBytes(
-          descriptor, base + written, buffer.count - written)
-      }
-      if result < 0 {
-        if errno == EINTR { continue }
-        throw OutputError(path: path, reason: systemReason())
-      }
-      written += result
+    if let reason = Platform.writeAll(descriptor, bytes) {
+      throw OutputError(path: path, reason: reason)
     }
   }
 
