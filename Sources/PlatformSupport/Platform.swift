@@ -110,6 +110,23 @@ package enum Platform {
     return nil
   }
 
+  /// The files directly in `folder` whose names end in `suffix`, as
+  /// `folder/name`, sorted by name; empty when the folder cannot be read.
+  package static func files(in folder: String, endingIn suffix: String)
+    -> [String]
+  {
+    guard let directory = opendir(folder) else { return [] }
+    defer { closedir(directory) }
+    var names: [String] = []
+    while let entry = readdir(directory) {
+      let name = withUnsafeBytes(of: entry.pointee.d_name) { raw in
+        String(decoding: raw.prefix { $0 != 0 }, as: UTF8.self)
+      }
+      if name.hasSuffix(suffix) { names.append(folder + "/" + name) }
+    }
+    return names.sorted()
+  }
+
   /// A new pipe's two descriptors (read, write), or nil.
   package static func makePipe() -> (read: Int32, write: Int32)? {
     var ends: [Int32] = [0, 0]

@@ -64,21 +64,6 @@ private func withFormat(_ format: String, _ value: Double) -> String {
     as: UTF8.self)
 }
 
-/// The `.txt` files directly in `folder`, sorted by name; empty when the
-/// folder cannot be read.
-func listTextFiles(in folder: String) -> [String] {
-  guard let directory = opendir(folder) else { return [] }
-  defer { closedir(directory) }
-  var names: [String] = []
-  while let entry = readdir(directory) {
-    let name = withUnsafeBytes(of: entry.pointee.d_name) { raw in
-      String(decoding: raw.prefix { $0 != 0 }, as: UTF8.self)
-    }
-    if name.hasSuffix(".txt") { names.append(folder + "/" + name) }
-  }
-  return names.sorted()
-}
-
 /// The executable's words for a remedy: its own options.
 extension Remedy {
   var advice: String {

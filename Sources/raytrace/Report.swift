@@ -15,9 +15,9 @@ struct Report: ParsableCommand {
     commandName: "report",
     abstract:
       """
-        Measure the fast engine's precisions and intersection methods \
-        against a high-precision reference.
-        """,
+      Measure the fast engine's precisions and intersection methods \
+      against a high-precision reference.
+      """,
     discussion: """
       Renders every scene with the fast engine (the one with a choice of \
       precision and method) in float and double, naive and stable, times each \
@@ -33,9 +33,9 @@ struct Report: ParsableCommand {
   @Argument(
     help:
       """
-        Scene files (default: scenes/stiff/*.txt and the course-like scenes \
-        in scenes/).
-        """
+      Scene files (default: scenes/stiff/*.txt and the course-like scenes \
+      in scenes/).
+      """
   )
   var scenes: [String] = []
 
@@ -88,9 +88,9 @@ struct Report: ParsableCommand {
   @Flag(
     help:
       """
-        Leave out the antialiasing rows (shaded image, 1 to 64 samples \
-        against 1024).
-        """
+      Leave out the antialiasing rows (shaded image, 1 to 64 samples \
+      against 1024).
+      """
   )
   var skipAntialiasing = false
 
@@ -229,7 +229,7 @@ struct Report: ParsableCommand {
 
   /// The stiff suite and the course-like scenes, from the project's root.
   private func defaultScenePaths() throws -> [String] {
-    let stiff = listTextFiles(in: "scenes/stiff")
+    let stiff = Platform.files(in: "scenes/stiff", endingIn: ".txt")
     guard !stiff.isEmpty else {
       throw ValidationError(
         "No scenes given and scenes/stiff/ not found: run from the project's "
