@@ -39,8 +39,6 @@ package struct ShapeProbeReport: Sendable {
     diagnoses.isEmpty && probed.allSatisfy { $0.failed == 0 }
   }
 
-  package var probeCount: Int { probed.reduce(0) { $0 + $1.probes } }
-
   /// What `--check` prints before rendering; nothing when the scene has
   /// no shape to ask. When a probe fails, the last line says that the
   /// images were not compared.
