@@ -110,11 +110,9 @@ package enum Platform {
     return nil
   }
 
-  /// The files directly in `folder` whose names end in `suffix`, as
-  /// `folder/name`, sorted by name; empty when the folder cannot be read.
-  package static func files(in folder: String, endingIn suffix: String)
-    -> [String]
-  {
+  /// The names in `folder` (files and folders, not `.` and `..`), sorted;
+  /// empty when the folder cannot be read.
+  package static func names(in folder: String) -> [String] {
     guard let directory = opendir(folder) else { return [] }
     defer { closedir(directory) }
     var names: [String] = []
@@ -122,7 +120,7 @@ package enum Platform {
       let name = withUnsafeBytes(of: entry.pointee.d_name) { raw in
         String(decoding: raw.prefix { $0 != 0 }, as: UTF8.self)
       }
-      if name.hasSuffix(suffix) { names.append(folder + "/" + name) }
+      if name != "." && name != ".." { names.append(name) }
     }
     return names.sorted()
   }

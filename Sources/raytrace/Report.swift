@@ -229,7 +229,8 @@ struct Report: ParsableCommand {
 
   /// The stiff suite and the course-like scenes, from the project's root.
   private func defaultScenePaths() throws -> [String] {
-    let stiff = Platform.files(in: "scenes/stiff", endingIn: ".txt")
+    let stiff = Platform.names(in: "scenes/stiff")
+      .filter { $0.hasSuffix(".txt") }.map { "scenes/stiff/" + $0 }
     guard !stiff.isEmpty else {
       throw ValidationError(
         "No scenes given and scenes/stiff/ not found: run from the project's "

@@ -24,18 +24,7 @@ final class AtomicFileTests: XCTestCase {
     rmdir(folder)
   }
 
-  func contents() -> [String] {
-    guard let directory = opendir(folder) else { return [] }
-    defer { closedir(directory) }
-    var names: [String] = []
-    while let entry = readdir(directory) {
-      let name = withUnsafeBytes(of: entry.pointee.d_name) { raw in
-        String(decoding: raw.prefix { $0 != 0 }, as: UTF8.self)
-      }
-      if name != "." && name != ".." { names.append(name) }
-    }
-    return names.sorted()
-  }
+  func contents() -> [String] { Platform.names(in: folder) }
 
   func read(_ path: String) -> [UInt8]? {
     try? readFile(path)

@@ -1,11 +1,5 @@
-import XCTest
-@testable import FastEngine
-@testable import Measurement
-@testable import SceneIO
 @testable import Geometry
-@testable import SceneDescription
-@testable import Numerics
-@testable import PlatformSupport
+@testable import SceneIO
 
 // The whole image filtered at once: what the tests hold the encoder's
 // row-by-row filtering (`PNGEncoder.filterRow`) to.
