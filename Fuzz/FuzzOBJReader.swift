@@ -57,6 +57,8 @@ public func fuzzOBJReader(_ data: UnsafePointer<UInt8>?, _ size: Int) -> CInt {
       }
     }
   }
-  _ = mesh.smoothed().makeTriangles(materialIndex: 0, as: Double.self)
+  // The scene's mesh, as `MeshLoader` makes it, and each of its triangles.
+  let triangles = TriangleMesh(mesh, materialIndex: 0, normals: .unitMean)
+  for triangle in triangles { _ = triangle.geometricNormal }
   return 0
 }

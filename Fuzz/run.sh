@@ -265,5 +265,7 @@ done
 # before libFuzzer (which leaves a handler already installed alone), and
 # then neither save the input nor exit.
 export SWIFT_BACKTRACE=enable=no
+# Leaks of Foundation's own, not the package's (Fuzz/lsan.supp says which).
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=Fuzz/lsan.supp}
 exec "$objects/fuzz-$mode" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
   -dict="$dictionary" -artifact_prefix="$crashes/" "$@" "${inputs[@]}"
