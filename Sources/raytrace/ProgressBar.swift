@@ -6,7 +6,6 @@ import SceneDescription
 import Numerics
 import PlatformSupport
 
-
 /// A progress bar on standard error for renders that take more than about
 /// a second, and only when standard error is a terminal: scripts and
 /// redirected logs get nothing.

@@ -17,7 +17,6 @@ package struct EngineCheck {
     package var materialIndex: Int
     package var t: Double
     package var normal: Vector3<Double>
-
   }
 
   /// One output's comparison, and its first differing pixel's report.

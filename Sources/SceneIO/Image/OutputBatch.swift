@@ -27,7 +27,6 @@ package final class OutputBatch {
     package static let system = FileOperations(
       rename: { Platform.renameFile($0, $1) },
       link: { Platform.linkFile($0, $1) })
-
   }
 
   package let paths: [String]
