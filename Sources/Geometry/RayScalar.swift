@@ -8,7 +8,17 @@ import RealModule
 /// The choice is made once per render (the fast engine's `Precision`), so
 /// every generic function is specialised for the concrete type rather than
 /// dispatched through witness tables.
-public protocol RayScalar: Real, BinaryFloatingPoint, Sendable {}
+///
+/// Of the elementary functions it asks only those a render calls: `tan`
+/// (the camera's field of view), `sin` and `cos` (rotations) and `pow`
+/// (specular highlights). Float, Double and Float80 take them from their
+/// `Real` conformance (RealModule); `DoubleDouble` writes just these.
+public protocol RayScalar: BinaryFloatingPoint, Sendable {
+  static func sin(_ x: Self) -> Self
+  static func cos(_ x: Self) -> Self
+  static func tan(_ x: Self) -> Self
+  static func pow(_ x: Self, _ y: Self) -> Self
+}
 
 extension Float: RayScalar {}
 extension Double: RayScalar {}

@@ -45,12 +45,11 @@ import PlatformSupport
 ///   error terms of products underflow before that, from about 2⁻⁹¹⁶.
 /// - literals: `FloatLiteralType` is Double, so `0.1 as DoubleDouble` is
 ///   Double's 0.1, not 1/10 to 106 bits; write `DoubleDouble(1) / 10`.
-/// - `exp`, `log`, the inverse trigonometric functions, `pow(_:_:)` with a
-///   real exponent and the rest of `RealFunctions` go through Double (see
-///   DoubleDouble+Real.swift); only `sqrt`, `hypot`, `pow(_:_:)` with an
-///   integer exponent, `root` and `sin`, `cos`, `tan` (for |x| < 2³⁰) are
-///   double-double accurate. The reference path uses arithmetic and square
-///   roots only; the tests' references also rotate.
+/// - elementary functions: only those `RayScalar` asks
+///   (DoubleDouble+Elementary.swift): `sin`, `cos`, `tan` double-double
+///   accurate for |x| < 2³⁰, `pow` with a real exponent through Double.
+///   The reference path uses arithmetic and square roots only; the tests'
+///   references also rotate.
 /// - `addingProduct` is not fused: it rounds the product, then the sum.
 ///
 /// On x86 the reference path uses Float80 (64-bit significand, IEEE); this

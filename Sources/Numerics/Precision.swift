@@ -11,7 +11,6 @@ import Geometry
   @usableFromInline
   package typealias ReferenceScalar = DoubleDouble
 #endif
-extension DoubleDouble: RayScalar {}
 
 /// The precision the fast engine computes in, as chosen on the command
 /// line; the readers check that the scene's numbers fit it
