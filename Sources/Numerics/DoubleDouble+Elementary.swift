@@ -32,25 +32,24 @@ extension DoubleDouble: RayScalar {
     guard let (r, quadrant) = reducedQuarterTurn(x) else {
       return viaDouble(x, cSin)
     }
-    switch quadrant {
-    case 0: return sinSeries(r)
-    case 1: return cosSeries(r)
-    case 2: return -sinSeries(r)
-    default: return -cosSeries(r)
-    }
+    return sine(r, quarterTurns: quadrant)
   }
-  /// cos x in double-double for |x| < 2³⁰, within a few units of u²
-  /// absolute; through Double beyond.
+  /// cos x = sin(x + π/2), in double-double for |x| < 2³⁰, within a few
+  /// units of u² absolute; through Double beyond.
   @usableFromInline
   package static func cos(_ x: DoubleDouble) -> DoubleDouble {
     guard let (r, quadrant) = reducedQuarterTurn(x) else {
       return viaDouble(x, cCos)
     }
-    switch quadrant {
-    case 0: return cosSeries(r)
-    case 1: return -sinSeries(r)
-    case 2: return -cosSeries(r)
-    default: return sinSeries(r)
+    return sine(r, quarterTurns: quadrant + 1)
+  }
+  /// sin(r + k·π/2) for a reduced r: sin's or cos's series, signed.
+  static func sine(_ r: DoubleDouble, quarterTurns k: Int) -> DoubleDouble {
+    switch k % 4 {
+    case 0: return sinSeries(r)
+    case 1: return cosSeries(r)
+    case 2: return -sinSeries(r)
+    default: return -cosSeries(r)
     }
   }
   /// sin x / cos x, in double-double for |x| < 2³⁰.
@@ -79,31 +78,30 @@ extension DoubleDouble: RayScalar {
     return (r, (Int(k) % 4 + 4) % 4)
   }
 
-  /// Σ (−1)ⁱ r^(2i+1)/(2i+1)! for |r| ≤ π/4 (plus the reduction's slack),
-  /// until the terms fall below 2⁻¹¹⁰ of the sum: at most 14 terms, each
-  /// rounded within a few u² of itself.
+  /// sin r = Σ (−1)ⁱ r^(2i+1)/(2i+1)! for |r| ≤ π/4 (plus the
+  /// reduction's slack); see `series`.
   static func sinSeries(_ r: DoubleDouble) -> DoubleDouble {
-    let square = r * r
-    var term = r
-    var sum = r
-    var n = 1.0
-    while term.magnitude > sum.magnitude * 0x1p-110 {
-      term = -(term * square) / DoubleDouble((n + 1) * (n + 2))
-      n += 2
-      sum = sum + term
-    }
-    return sum
+    series(r, first: r, power: 1)
   }
 
-  /// Σ (−1)ⁱ r^(2i)/(2i)! for |r| ≤ π/4, as `sinSeries`.
+  /// cos r = Σ (−1)ⁱ r^(2i)/(2i)! for |r| ≤ π/4; see `series`.
   static func cosSeries(_ r: DoubleDouble) -> DoubleDouble {
+    series(r, first: 1, power: 0)
+  }
+
+  /// Σ (−1)ⁱ r^(2i+n)/(2i+n)! from the term `first` = rⁿ/n!, until the
+  /// terms fall below 2⁻¹¹⁰ of the sum: at most 14 terms, each rounded
+  /// within a few u² of itself.
+  static func series(
+    _ r: DoubleDouble, first: DoubleDouble, power n: Double
+  ) -> DoubleDouble {
     let square = r * r
-    var term: DoubleDouble = 1
-    var sum: DoubleDouble = 1
-    var n = 0.0
+    var term = first
+    var sum = first
+    var k = n
     while term.magnitude > sum.magnitude * 0x1p-110 {
-      term = -(term * square) / DoubleDouble((n + 1) * (n + 2))
-      n += 2
+      term = -(term * square) / DoubleDouble((k + 1) * (k + 2))
+      k += 2
       sum = sum + term
     }
     return sum
