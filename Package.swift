@@ -173,37 +173,36 @@ let package = Package(
     ),
     .target(name: "PlatformSupport", swiftSettings: acrossTargets),
     .target(
-      name: "Numerics",
-      dependencies: ["Geometry", "SceneDescription", "PlatformSupport", realModule],
+      name: "ExactArithmetic", dependencies: ["Geometry", "PlatformSupport"],
       swiftSettings: acrossTargets),
     .target(
       name: "SceneIO",
-      dependencies: [
-        "Geometry", "SceneDescription", "Numerics", "PlatformSupport", "CZlib",
-      ],
+      dependencies: ["Geometry", "SceneDescription", "PlatformSupport", "CZlib"],
       swiftSettings: acrossTargets),
     .target(
       name: "FastEngine",
-      dependencies: ["Geometry", "SceneDescription", "Numerics", "PlatformSupport"],
+      dependencies: [
+        "Geometry", "SceneDescription", "ExactArithmetic", "PlatformSupport",
+      ],
       swiftSettings: acrossTargets + optimizedInDebugBuilds),
     .target(
       name: "Pipeline",
       dependencies: [
-        "Geometry", "SceneDescription", "Course", "Numerics", "PlatformSupport",
+        "Geometry", "SceneDescription", "Course", "ExactArithmetic", "PlatformSupport",
         "SceneIO", "FastEngine",
       ],
       swiftSettings: acrossTargets),
     .target(
       name: "Measurement",
       dependencies: [
-        "Course", "Geometry", "SceneDescription", "Numerics", "PlatformSupport", "SceneIO",
+        "Course", "Geometry", "SceneDescription", "ExactArithmetic", "PlatformSupport", "SceneIO",
         "FastEngine", realModule,
       ]
     ),
     .executableTarget(
       name: "raytrace",
       dependencies: [
-        "Geometry", "SceneDescription", "Numerics", "PlatformSupport", "SceneIO",
+        "Geometry", "SceneDescription", "ExactArithmetic", "PlatformSupport", "SceneIO",
         "FastEngine", "Pipeline", "Measurement", argumentParser,
       ]
     ),
@@ -216,14 +215,14 @@ let package = Package(
     .testTarget(
       name: "EngineTests",
       dependencies: [
-        "Course", "Geometry", "SceneDescription", "Numerics", "SceneIO",
+        "Course", "Geometry", "SceneDescription", "ExactArithmetic", "SceneIO",
         "FastEngine", "Pipeline", "Measurement",
       ]
     ),
     .testTarget(
       name: "RayTracerTests",
       dependencies: [
-        "Geometry", "SceneDescription", "Numerics", "PlatformSupport", "SceneIO",
+        "Geometry", "SceneDescription", "ExactArithmetic", "PlatformSupport", "SceneIO",
         "FastEngine", "Pipeline", "Measurement", "raytrace",
       ]
     ),

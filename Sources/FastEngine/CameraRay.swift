@@ -1,5 +1,4 @@
 import Geometry
-import Numerics
 
 /// A camera ray as the render loop uses it: in the kernel's frame, with the
 /// per-ray quantities every primitive test needs computed once.

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 /// The ellipsoids' search: one by one, or through a hierarchy of their
 /// own when there are many, left where they are in `ellipsoids` and reached

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 /// Triangles much larger than their distance from the eye (`TrianglePlane`):
 /// kept after the others in `triangles`, outside the hierarchy, and tested

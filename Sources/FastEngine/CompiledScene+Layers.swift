@@ -1,5 +1,4 @@
 import Geometry
-import Numerics
 
 /// The search of a scene's layers: objects its common scale cannot hold,
 /// traced at their own (`LengthScale.layers`).

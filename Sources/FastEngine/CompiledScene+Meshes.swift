@@ -1,6 +1,6 @@
+import ExactArithmetic
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// The scene's triangles compiled into records, mesh by mesh, straight from

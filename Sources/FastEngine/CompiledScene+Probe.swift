@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 /// What the fast engine hits along one ray from the eye, object by object
 /// of the scene's group: how the engines' check names the object the

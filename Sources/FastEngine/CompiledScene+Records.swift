@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 /// A triangle as the loop tests it: vertices in the kernel's frame. Its
 /// shading (material, vertex normals, texture coordinates) is kept beside

@@ -1,5 +1,4 @@
 import Geometry
-import Numerics
 
 /// The nearest hit of one camera ray: the spheres by a search of the
 /// render's choice, then planes, triangles, ellipsoids and the other

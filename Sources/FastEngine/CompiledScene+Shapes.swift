@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 /// Shapes of kinds the fast engine does not specialise (`SceneObject.shape`,
 /// docs/ADDING-A-SHAPE.md): tested after its own kinds, through each

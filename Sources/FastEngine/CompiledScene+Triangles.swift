@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 /// The ordinary triangles' searches: through their hierarchy, one by one,
 /// or projected onto screen tiles (`ScreenTiles`), each pixel's ray then

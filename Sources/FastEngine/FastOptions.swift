@@ -1,4 +1,3 @@
-import Numerics
 
 /// How the fast engine renders: its precision and method, and the scene
 /// sizes from which it changes its search.

@@ -1,5 +1,5 @@
+import ExactArithmetic
 import Geometry
-import Numerics
 import SceneDescription
 import PlatformSupport
 

@@ -1,6 +1,6 @@
+import ExactArithmetic
 import Geometry
 import SceneDescription
-import Numerics
 
 /// A sphere under a non-similarity transform, stored in its own space, the
 /// course's way: rays carried there by M⁻¹ (the eye once, in Double; the

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 /// The parts of the render loop that depend on the intersection method: how
 /// spheres and planes are stored and tested. The loop is generic over it and

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 /// The nearest hit along one ray so far, and the tie rule every search of
 /// the fast engine keeps.

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// What a pixel's nearest hit becomes: its depth, normal and colour

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// The pixel loop of `ScreenTiles`: a tile's rays generated together, then

@@ -1,5 +1,4 @@
 import Geometry
-import Numerics
 
 /// A supersampled pixel: what each of its samples gives, and the means the
 /// outputs take (`RenderSettings.samples`, `samplesAllOutputs`).

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// The pixel loop: rows in tiles, each tile's rays generated together,

@@ -1,7 +1,6 @@
 import Dispatch
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// The per-pixel loop: one camera ray per pixel, nearest hit, then only the

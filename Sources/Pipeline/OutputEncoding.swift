@@ -2,7 +2,6 @@ import Dispatch
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 import Course
 import FastEngine

@@ -5,7 +5,6 @@ import Measurement
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// `raytrace bench`: the fixed workloads of the README's performance table.

@@ -3,7 +3,6 @@ import Measurement
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// `raytrace compare A B`: how far two images are apart, where, and the

@@ -4,7 +4,6 @@ import Measurement
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// Standard output, written line by line with write(2) so that a failed
@@ -76,8 +75,12 @@ extension Remedy {
 
 extension SceneError {
   /// The error as the command line reports it: the message, then the
-  /// remedy in the command line's own options.
-  var report: String {
+  /// remedy in the command line's own options (for a number beyond the
+  /// range it was read for, the remedy that range has).
+  var report: String { report(remedy: Remedy(exceeded: exceeded)) }
+
+  /// The message, then `remedy` in the command line's own options.
+  func report(remedy: Remedy?) -> String {
     description + (remedy.map { "; " + $0.advice } ?? "")
   }
 }

@@ -3,7 +3,6 @@ import Measurement
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// A progress bar on standard error for renders that take more than about

@@ -5,7 +5,6 @@ import Measurement
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// What the command line is checked for before anything is rendered:

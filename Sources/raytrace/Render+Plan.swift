@@ -8,7 +8,6 @@ import Measurement
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// The options checked and turned into what a render needs: the scene's

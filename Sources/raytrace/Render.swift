@@ -8,7 +8,6 @@ import Measurement
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 struct Render: ParsableCommand {
@@ -242,31 +241,38 @@ struct Render: ParsableCommand {
       scene = try SceneReader.read(
         contentsOf: plan.scenePath,
         options: SceneOptions(
-          style: plan.settings.style, precision: plan.request.fast.precision,
+          style: plan.settings.style,
+          precision: plan.request.fast.precision.numberRange,
           shapes: CourseShapes.all, threads: plan.settings.threads))
     } catch {
       printError(error.report)
       throw ExitCode.failure
     }
     let parseSeconds = clock.lap()
-    // What the fast engine cannot hold at any scale it traces at, and,
-    // when the course engine renders, what its own lengths cannot.
+    // What the engines that render cannot hold: the fast engine at any
+    // scale it traces at, the course engine at the scene's own lengths.
+    // Where the course engine cannot, the fast engine's verdict (in
+    // double, the course engine's precision) decides whether it is the
+    // remedy.
+    let usesFast = plan.request.engine == .fast || check
     let usesCourse = plan.request.engine == .course || check
     let precision = plan.request.fast.precision
-    let problem: (String, Remedy?)? =
+    let fastProblem = {
       LengthScale.problem(
         scene, precision: precision, threads: plan.settings.threads
-      ).map {
-        ($0, precision.remedy)
-      }
+      ).map { ($0, precision.remedy) }
+    }
+    let problem: (String, Remedy?)? =
+      (usesFast ? fastProblem() : nil)
       ?? (usesCourse
-        ? LengthScale.unscaledProblem(scene).map { ($0, .fastEngine) } : nil)
+        ? CourseEngineLimits.problem(scene).map {
+          fastProblem() ?? ($0, .fastEngine)
+        } : nil)
     if let (message, remedy) = problem {
       printError(
         SceneError(
-          file: plan.scenePath, line: 0, column: 0, message: message,
-          remedy: remedy
-        ).report)
+          file: plan.scenePath, line: 0, column: 0, message: message
+        ).report(remedy: remedy))
       throw ExitCode.failure
     }
     try checkOutputs(plan.files, against: scene)

@@ -6,7 +6,6 @@ import Measurement
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// `raytrace report`: error against run time for every precision and method.
@@ -154,7 +153,8 @@ struct Report: ParsableCommand {
         // refuses it.
         if precision != .double {
           let options = SceneOptions(
-            style: .course, precision: precision, shapes: CourseShapes.all)
+            style: .course, precision: precision.numberRange,
+            shapes: CourseShapes.all)
           guard
             (try? SceneReader.read(contentsOf: path, options: options)) != nil
           else { continue }

@@ -5,7 +5,7 @@ import SceneIO
 import Pipeline
 import Geometry
 import SceneDescription
-import Numerics
+import ExactArithmetic
 import PlatformSupport
 import XCTest
 

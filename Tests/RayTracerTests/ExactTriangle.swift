@@ -1,6 +1,6 @@
 import Geometry
 import SceneDescription
-import Numerics
+import ExactArithmetic
 import PlatformSupport
 
 /// Exact references for triangles, in `ExactDyadic` (exact dyadic

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 extension BoundingVolumeHierarchy {
   /// Puts `elements`, given in the original order, into leaf order in

@@ -1,5 +1,4 @@
 import Geometry
-import Numerics
 
 // The binned surface-area heuristic's bookkeeping: the boxes, bounds and
 // bins a build partitions.

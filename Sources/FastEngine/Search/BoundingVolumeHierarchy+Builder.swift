@@ -1,7 +1,6 @@
 import Dispatch
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 extension BoundingVolumeHierarchy {

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// A node's primitives divided between its children: the bins' index of a

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 // Traversal: the nearest hit of one ray, equal to testing every primitive.
 

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// A bounding volume hierarchy over a scene's spheres, for camera rays: the

@@ -1,5 +1,4 @@
 import Geometry
-import Numerics
 
 /// The flat loop: every sphere, in scene order.
 struct EverySphere: NearestSphereSearch {

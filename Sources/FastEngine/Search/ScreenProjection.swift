@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// Pixels from `firstColumn` to `lastColumn` and `firstRow` to `lastRow`,

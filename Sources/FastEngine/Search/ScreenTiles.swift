@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// Spheres sorted by the screen tiles their silhouettes may cover: the

@@ -1,5 +1,4 @@
 import Geometry
-import Numerics
 
 /// The scene's bounding volume hierarchy of spheres: the four-wide tree
 /// where it can answer for the ray, else the binary one.

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 /// The spheres a tile of pixels' rays may hit (`CompiledScene.cullSpheres`),
 /// in scene order: for scenes too small for a hierarchy or screen

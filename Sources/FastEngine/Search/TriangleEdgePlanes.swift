@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 /// A conservative first look at whether a ray from the eye misses a
 /// triangle: the three planes through the eye and each of its edges, and

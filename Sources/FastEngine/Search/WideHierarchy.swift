@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// A `BoundingVolumeHierarchy` regrouped four children to a node, with the

@@ -2,7 +2,6 @@ import FastEngine
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// One fixed workload of `raytrace bench`.

@@ -2,7 +2,6 @@ import FastEngine
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// The same workload rendered by the peer, Mitsuba 3, through the course

@@ -2,7 +2,6 @@ import FastEngine
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// A lumpy closed mesh of a given triangle count on a ground plane, in the

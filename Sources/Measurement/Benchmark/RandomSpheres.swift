@@ -2,7 +2,6 @@ import FastEngine
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// Scenes of many random spheres in the course's text format, laid out as

@@ -2,7 +2,6 @@ import FastEngine
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// The course engine's images against the fast engine's, output by output,
@@ -116,7 +115,7 @@ package struct EngineCheck {
   ) -> Found? {
     guard let best = hits.min(by: { $0.hit.t < $1.hit.t }) else { return nil }
     return Found(
-      index: best.index, kind: kind(of: scene.root.objects[best.index]),
+      index: best.index, kind: scene.root.objects[best.index].kindName,
       materialIndex: best.hit.materialIndex, t: best.hit.t,
       normal: best.hit.normal)
   }
@@ -140,20 +139,8 @@ package struct EngineCheck {
     }
     guard let best else { return nil }
     return Found(
-      index: best.index, kind: kind(of: scene.root.objects[best.index]),
+      index: best.index, kind: scene.root.objects[best.index].kindName,
       materialIndex: best.material, t: t, normal: normal)
-  }
-
-  static func kind(of object: SceneObject<Double>) -> String {
-    switch object {
-    case .sphere: "Sphere"
-    case .plane: "Plane"
-    case .triangle: "Triangle"
-    case .mesh: "TriangleMesh"
-    case .group: "Group"
-    case .transform: "Transform"
-    case .shape: "a shape of its own"
-    }
   }
 
   /// The pixel, its ray, what each engine hit, and what differs.

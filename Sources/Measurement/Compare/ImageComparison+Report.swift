@@ -1,7 +1,6 @@
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 extension ImageComparison {

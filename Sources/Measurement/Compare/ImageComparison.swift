@@ -1,7 +1,6 @@
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// Two images of the same size compared pixel by pixel, and what the

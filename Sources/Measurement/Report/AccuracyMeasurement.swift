@@ -3,7 +3,6 @@ import FastEngine
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 
 /// How far a render's depth and normals are from the reference path's, per
 /// pixel and in summary.

@@ -1,9 +1,9 @@
+import ExactArithmetic
 import Course
 import FastEngine
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// Renders for the accuracy report and the stiff-suite tests.

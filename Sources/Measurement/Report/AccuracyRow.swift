@@ -1,7 +1,7 @@
+import ExactArithmetic
 import FastEngine
 import Geometry
 import SceneDescription
-import Numerics
 
 /// One row of `raytrace report`: a scene rendered in one precision by one
 /// method, its time and its error against the reference.
@@ -50,7 +50,7 @@ package struct AccuracyRow: Sendable {
     reference: ReferencePrecision, timing: Timing
   ) -> [AccuracyRow] {
     let withCourse =
-      precision == .double && LengthScale.unscaledProblem(scene) == nil
+      precision == .double && LengthScale.unscaledFailure(scene) == nil
     // Generic over the reference's scalar, chosen by `reference`.
     func rows<R: RayScalar>(in _: R.Type) -> [AccuracyRow] {
       let wanted = AccuracyRender.reference(

@@ -3,7 +3,6 @@ import FastEngine
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// How far a supersampled shaded image is from a reference with many more

@@ -1,7 +1,6 @@
 import RealModule
 import SceneIO
 import Geometry
-import Numerics
 
 /// Per-pixel error in false colour, with a legend, for `raytrace report
 /// --heatmaps`.

@@ -1,4 +1,3 @@
-import Numerics
 
 /// `raytrace report --plot FILE.svg`: error against run time, as a
 /// picture.

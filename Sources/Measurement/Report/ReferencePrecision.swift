@@ -1,7 +1,6 @@
 import SceneIO
 import Geometry
 import SceneDescription
-import Numerics
 
 /// The precision the accuracy reference intersects in, as chosen on the
 /// command line (`raytrace report --reference`).

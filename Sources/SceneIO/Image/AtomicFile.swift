@@ -1,5 +1,4 @@
 import Geometry
-import Numerics
 
 /// Why an output file could not be written; the description is one sentence
 /// naming the path and the system's reason.

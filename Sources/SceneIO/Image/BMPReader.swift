@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 /// Reads uncompressed Windows bitmaps, the course's texture files: 24-bit
 /// (BGR) and 32-bit (BGRA or BGRX, alpha dropped) pixels, rows stored

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// How raw depth, normals and colour become 8-bit pixels in each style (the

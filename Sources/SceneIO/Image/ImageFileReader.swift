@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// An image read back for comparison (`raytrace compare`): 8-bit RGB

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 /// The file formats an output can take, chosen by the path's extension.
 package enum ImageFormat: String, CaseIterable, Sendable {

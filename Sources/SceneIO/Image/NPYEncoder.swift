@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// NumPy's `.npy` format, version 1.0: magic, a header dictionary padded so

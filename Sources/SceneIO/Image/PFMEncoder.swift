@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// Portable float map: `Pf` (one channel) or `PF` (three), the size, then a

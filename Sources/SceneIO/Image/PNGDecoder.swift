@@ -1,7 +1,6 @@
 import CZlib
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// Reads back the PNG files this project writes, and any other

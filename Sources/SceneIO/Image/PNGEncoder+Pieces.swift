@@ -1,7 +1,6 @@
 import CZlib
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 extension PNGEncoder {

@@ -1,7 +1,6 @@
 import CZlib
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// How PNG rows are filtered before compression.

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 /// Binary PPM (P6): a text header, then RGB bytes row by row from the top.
 package enum PPMEncoder {

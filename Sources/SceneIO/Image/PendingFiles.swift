@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// What a signal handler must undo for the outputs in flight, in fixed C

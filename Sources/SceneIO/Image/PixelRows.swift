@@ -1,5 +1,4 @@
 import Geometry
-import Numerics
 
 /// An 8-bit RGB image handed out a row at a time, row 0 at the top: what
 /// the encoders read, so that an image computed from a render's buffers

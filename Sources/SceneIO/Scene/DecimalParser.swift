@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// Decimal text to Double, fast for the short numbers scene files hold.

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// Files whose contents are estimated before they are read: a mesh or a

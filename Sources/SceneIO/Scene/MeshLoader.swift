@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// Turns an OBJ file into a scene object, as both scene formats name it
@@ -35,7 +34,7 @@ enum MeshLoader {
       var file: FileIdentity.Key
       var textured: Bool
       var normals: MeshNormals
-      var precision: Precision
+      var precision: NumberRange
     }
     let loaded = Locked<[Key: Loaded]>([:])
   }
@@ -43,7 +42,7 @@ enum MeshLoader {
   /// `load`, from `cache` when the same file was read the same way.
   static func load(
     _ path: String, materialIndex: Int, textured: Bool, normals: MeshNormals,
-    precision: Precision = .double, threads: Int, cache: Cache
+    precision: NumberRange = .double, threads: Int, cache: Cache
   ) throws(Failure) -> Loaded {
     guard let file = FileIdentity.key(path) else {
       return try load(
@@ -69,7 +68,7 @@ enum MeshLoader {
   /// `threads` threads (the same mesh for any count).
   static func load(
     _ path: String, materialIndex: Int, textured: Bool, normals: MeshNormals,
-    precision: Precision = .double, threads: Int
+    precision: NumberRange = .double, threads: Int
   ) throws(Failure) -> Loaded {
     if let problem = MemoryNeed.problem(reading: path, perByte: 6) {
       throw .atReference(problem)

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// The statements of an OBJ file: vertices, normals, texture coordinates

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// Numbers, tokens and messages of the OBJ reader.
@@ -29,11 +28,11 @@ extension OBJParser {
           + "'\(quote(token))'")
     }
     if !precision.holds(value) || value == 0,
-      Precision.isDecimal(quote(token)),
+      NumberRange.isDecimal(quote(token)),
       let problem = precision.rangeProblem(value, text: quote(token))
     {
       throw error(at: token, "\(name) of '\(statement)': \(problem)")
-        .with(precision.remedy)
+        .exceeding(precision)
     }
     guard value.isFinite else {
       throw error(

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// A large OBJ file read in parts on several threads, one per thread: the
@@ -27,7 +26,7 @@ extension OBJReader {
   /// file has no line to split at near any part's start: the caller reads
   /// it on one thread then.
   static func parseInParts(
-    _ bytes: UnsafeBufferPointer<UInt8>, file: String, precision: Precision,
+    _ bytes: UnsafeBufferPointer<UInt8>, file: String, precision: NumberRange,
     parts: Int
   ) throws(SceneError) -> OBJMesh? {
     let splits = splitPoints(bytes, parts: parts)

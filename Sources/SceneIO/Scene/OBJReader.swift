@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// Reads the polygon meshes of Wavefront OBJ files, as `TriangleMesh
@@ -47,12 +46,12 @@ import PlatformSupport
 package enum OBJReader {
   /// Reads and parses the file at `path`; `path` names the file in
   /// messages. A file that cannot be read is an error with line 0. Every
-  /// number must be held by `precision` (see `Precision.rangeProblem`).
+  /// number must be held by `precision` (see `NumberRange.rangeProblem`).
   /// A large file is read and parsed by up to `threads` threads, one part
   /// each (`parseInParts`): the mesh, or the error, is the same for any
   /// count.
   package static func read(
-    contentsOf path: String, precision: Precision = .double, threads: Int = 1
+    contentsOf path: String, precision: NumberRange = .double, threads: Int = 1
   ) throws(SceneError) -> OBJMesh {
     let bytes: SceneBytes
     do {
@@ -69,7 +68,7 @@ package enum OBJReader {
 
   /// Parses `text`; `file` names it in messages.
   package static func parse(
-    _ text: String, file: String, precision: Precision = .double
+    _ text: String, file: String, precision: NumberRange = .double
   ) throws(SceneError) -> OBJMesh {
     try parse(bytes: Array(text.utf8), file: file, precision: precision)
   }
@@ -77,7 +76,7 @@ package enum OBJReader {
   /// Parses raw bytes, which need not be valid UTF-8, in `parts` parts
   /// however small (`parseInParts`; tests split small files).
   static func parse(
-    bytes: [UInt8], file: String, precision: Precision = .double,
+    bytes: [UInt8], file: String, precision: NumberRange = .double,
     parts: Int = 1
   ) throws(SceneError) -> OBJMesh {
     try bytes.withUnsafeBufferPointer { (buffer) throws(SceneError) in
@@ -88,7 +87,7 @@ package enum OBJReader {
   /// Parses `bytes` in `parts` parts, each on its own thread, or on one
   /// thread where there is one part or no line to split at.
   static func parse(
-    _ bytes: UnsafeBufferPointer<UInt8>, file: String, precision: Precision,
+    _ bytes: UnsafeBufferPointer<UInt8>, file: String, precision: NumberRange,
     parts: Int
   ) throws(SceneError) -> OBJMesh {
     if parts > 1,
@@ -109,7 +108,7 @@ struct OBJParser {
   let bytes: UnsafeBufferPointer<UInt8>
   let file: String
   /// The render's precision, which must hold every number.
-  let precision: Precision
+  let precision: NumberRange
   var index = 0
   var line = 1
   var lineStart = 0
@@ -202,7 +201,7 @@ struct OBJParser {
 
   init(
     bytes: UnsafeBufferPointer<UInt8>, file: String,
-    precision: Precision = .double
+    precision: NumberRange = .double
   ) {
     self.bytes = bytes
     self.file = file

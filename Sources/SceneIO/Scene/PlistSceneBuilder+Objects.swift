@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 #if canImport(FoundationEssentials)
@@ -140,13 +139,13 @@ extension PlistSceneBuilder {
     }
     if let problem = SceneParser.matrixProblem(transform, options.precision) {
       throw fail("\(path).transforms", problem)
-        .with(options.precision.remedy)
+        .exceeding(options.precision)
     }
     if openTransforms == 0
       && !SceneParser.movedGeometryIsFinite(transform, options.precision)
     {
       throw fail(path, SceneParser.movedGeometryMessage(options.precision))
-        .with(options.precision.remedy)
+        .exceeding(options.precision)
     }
     return transform
   }

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 #if canImport(FoundationEssentials)
@@ -190,7 +189,7 @@ extension PlistSceneBuilder {
       let value = utf8.withUnsafeMutableBufferPointer {
         DecimalParser.parse(UnsafeBufferPointer($0))
       }
-      if let value, Precision.isDecimal(String(word)) {
+      if let value, NumberRange.isDecimal(String(word)) {
         try checkRange(value, String(word), path)
       }
       guard let value, value.isFinite else { values = []; break }
@@ -208,14 +207,14 @@ extension PlistSceneBuilder {
   }
 
   /// Refuses a number, written `text`, that the render's precision
-  /// cannot hold (see `Precision.rangeProblem`), at its key path.
+  /// cannot hold (see `NumberRange.rangeProblem`), at its key path.
   func checkRange(
     _ value: Double, _ text: String, _ path: String
   ) throws(SceneError) {
     guard !options.precision.holds(value),
       let problem = options.precision.rangeProblem(value, text: text)
     else { return }
-    throw fail(path, problem).with(options.precision.remedy)
+    throw fail(path, problem).exceeding(options.precision)
   }
 
   func required<T>(

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// The bytes a scene is parsed from, immutable once read, so the threads

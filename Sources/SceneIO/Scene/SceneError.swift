@@ -1,7 +1,3 @@
-import Geometry
-import SceneDescription
-import Numerics
-
 /// A problem with a scene file, reported as one line in the form compilers
 /// use, `FILE:LINE:COLUMN: error: message`, so that editors can jump to it.
 package struct SceneError: Error, Equatable, CustomStringConvertible, Sendable {
@@ -11,25 +7,25 @@ package struct SceneError: Error, Equatable, CustomStringConvertible, Sendable {
   /// 1-based column in bytes (the format is ASCII).
   package var column: Int
   package var message: String
-  /// What would hold the scene, when the problem is a precision's range
-  /// or an engine's; the executable words it after the message.
-  package var remedy: Remedy?
+  /// The range a number or a moved point of the scene does not fit, when
+  /// that is the problem; the executable words what would hold it.
+  package var exceeded: NumberRange?
 
   package init(
     file: String, line: Int, column: Int, message: String,
-    remedy: Remedy? = nil
+    exceeded: NumberRange? = nil
   ) {
     self.file = file
     self.line = line
     self.column = column
     self.message = message
-    self.remedy = remedy
+    self.exceeded = exceeded
   }
 
-  /// The error with `remedy`.
-  package func with(_ remedy: Remedy?) -> SceneError {
+  /// The error, marked as one of a number beyond `range`.
+  package func exceeding(_ range: NumberRange) -> SceneError {
     var error = self
-    error.remedy = remedy
+    error.exceeded = range
     return error
   }
 

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 // Reading scene, mesh and texture files whole: regular files only, up to

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// What reading a scene depends on beyond its file: the image style's
@@ -11,9 +10,9 @@ package struct SceneOptions: Sendable {
   /// The render's precision: every number of the scene (and of its
   /// meshes), and every Transform's matrix, must be finite, and zero or
   /// normal, in it; the readers refuse the first that is not, where it is
-  /// written (see `Precision.rangeProblem`). Double by default, which
+  /// written (see `NumberRange.rangeProblem`). Double by default, which
   /// refuses only what Double cannot hold either.
-  package var precision: Precision
+  package var precision: NumberRange
   /// Kinds of object beyond the readers' own, read by name (the course's
   /// `CourseShapes.all`, passed in by the command line).
   package var shapes: [ShapeKind] = []
@@ -23,7 +22,7 @@ package struct SceneOptions: Sendable {
   package var threads: Int
 
   package init(
-    meshNormals: MeshNormals, precision: Precision = .double,
+    meshNormals: MeshNormals, precision: NumberRange = .double,
     shapes: [ShapeKind] = [], threads: Int = Platform.availableCores
   ) {
     self.meshNormals = meshNormals
@@ -34,7 +33,7 @@ package struct SceneOptions: Sendable {
 
   /// The reading each image style's images were made with.
   package init(
-    style: ImageStyle, precision: Precision = .double,
+    style: ImageStyle, precision: NumberRange = .double,
     shapes: [ShapeKind] = [], threads: Int = Platform.availableCores
   ) {
     switch style {

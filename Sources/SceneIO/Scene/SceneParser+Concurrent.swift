@@ -1,7 +1,6 @@
 import Dispatch
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// A large group read on two threads: the second starts at a line break

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// Fields, values and the counts blocks declare.
@@ -78,18 +77,18 @@ extension SceneParser {
     // is looked at then, and the check costs nothing for other numbers.
     guard options.precision.holds(value),
       value != 0
-        || !Precision.writesNonZero(
+        || !NumberRange.writesNonZero(
           bytes: tokenizer.bytes[token.start..<token.end])
     else {
       let written = text(token)
-      if !value.isFinite && !Precision.isDecimal(written) {
+      if !value.isFinite && !NumberRange.isDecimal(written) {
         throw error(at: token, "expected a finite number, found '\(written)'")
       }
       guard let problem = options.precision.rangeProblem(value, text: written)
       else {
         throw error(at: token, "expected a finite number, found '\(written)'")
       }
-      throw error(at: token, problem).with(options.precision.remedy)
+      throw error(at: token, problem).exceeding(options.precision)
     }
     return (value, token)
   }

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 /// The text format's Lights, Background and Materials blocks.
 extension SceneParser {

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// Errors at tokens, quoted safely, and the nearest keyword to suggest.

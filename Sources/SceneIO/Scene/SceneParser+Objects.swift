@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// The objects of a group: spheres, planes, triangles, meshes, transforms
@@ -184,7 +183,7 @@ extension SceneParser {
             at: start, "the Transform's matrix has no inverse (a scale of 0?)")
         }
         if let problem = Self.matrixProblem(transform, options.precision) {
-          throw error(at: start, problem).with(options.precision.remedy)
+          throw error(at: start, problem).exceeding(options.precision)
         }
         if openTransforms == 1 {
           try checkMovedGeometry(transform, start)

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// The text format's own kinds of object: Triangle, TriangleMesh (with

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 /// Kinds of object the readers learn from their caller
 /// (`SceneOptions.shapes`, docs/ADDING-A-SHAPE.md), in the text format.

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 /// Reads the course's scene format:
 ///

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 /// Reads a scene file in either format, recognised by its content: a
 /// property list (XML or binary, the Swift course's files; see

@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 import PlatformSupport
 
 /// The bytes a UTF-8 file may start with to say it is UTF-8.

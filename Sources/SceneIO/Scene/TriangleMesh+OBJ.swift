@@ -1,6 +1,5 @@
 import Geometry
 import SceneDescription
-import Numerics
 
 /// A mesh file's triangles as the scene keeps them (`TriangleMesh`).
 extension TriangleMesh<Double> {

@@ -4,7 +4,7 @@ import XCTest
 @testable import SceneIO
 @testable import Geometry
 @testable import SceneDescription
-@testable import Numerics
+@testable import ExactArithmetic
 @testable import PlatformSupport
 
 /// One ellipsoid scene of the accuracy tests: a unit sphere placed by a

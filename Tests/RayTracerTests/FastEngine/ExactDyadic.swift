@@ -1,6 +1,6 @@
 @testable import Geometry
 @testable import SceneDescription
-@testable import Numerics
+@testable import ExactArithmetic
 @testable import PlatformSupport
 
 /// An exact binary rational m·2ᵉ (m an integer of any size): sums,

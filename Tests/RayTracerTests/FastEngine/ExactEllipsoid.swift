@@ -1,6 +1,6 @@
 @testable import Geometry
 @testable import SceneDescription
-@testable import Numerics
+@testable import ExactArithmetic
 @testable import PlatformSupport
 
 /// The exact intersection of a ray E + t·d (E and d exactly as given, in

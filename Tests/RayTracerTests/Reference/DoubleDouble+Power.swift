@@ -1,4 +1,4 @@
-@testable import Numerics
+@testable import ExactArithmetic
 
 // The tests' exact reference for whole powers (specular highlights):
 // not in Numerics, where no render asks a double-double for one.

@@ -1,6 +1,6 @@
 @testable import FastEngine
 @testable import Geometry
-@testable import Numerics
+@testable import ExactArithmetic
 @testable import SceneDescription
 
 // The scene description intersected directly, by the fast engine's own

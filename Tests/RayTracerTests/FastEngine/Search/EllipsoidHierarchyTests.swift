@@ -2,7 +2,7 @@ import XCTest
 
 @testable import FastEngine
 @testable import Geometry
-@testable import Numerics
+@testable import ExactArithmetic
 @testable import PlatformSupport
 @testable import SceneDescription
 

@@ -4,7 +4,7 @@ import XCTest
 @testable import Measurement
 @testable import SceneIO
 @testable import SceneDescription
-@testable import Numerics
+@testable import ExactArithmetic
 
 /// `raytrace report --plot`: the SVG's marks read back, through the axes
 /// each panel states, to the numbers of the rows they plot.

@@ -5,7 +5,7 @@ import XCTest
 @testable import SceneIO
 @testable import Geometry
 @testable import SceneDescription
-@testable import Numerics
+@testable import ExactArithmetic
 @testable import PlatformSupport
 
 /// DoubleDouble's raw significand, a 128-bit unsigned integer, against the

@@ -2,7 +2,7 @@ import XCTest
 
 @testable import Geometry
 @testable import SceneDescription
-@testable import Numerics
+@testable import ExactArithmetic
 @testable import PlatformSupport
 
 /// `ExactSum` against `ExactDyadic` (schoolbook integers, no

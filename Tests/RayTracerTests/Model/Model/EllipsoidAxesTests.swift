@@ -2,7 +2,7 @@ import XCTest
 
 @testable import Geometry
 @testable import SceneDescription
-@testable import Numerics
+@testable import ExactArithmetic
 @testable import PlatformSupport
 
 /// `EllipsoidAxes` checked exactly against the Double matrix it was given,

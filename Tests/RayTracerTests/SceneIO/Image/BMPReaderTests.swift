@@ -5,7 +5,7 @@ import XCTest
 @testable import SceneIO
 @testable import Geometry
 @testable import SceneDescription
-@testable import Numerics
+@testable import ExactArithmetic
 @testable import PlatformSupport
 
 /// The BMP reader on files written here byte by byte: both row orders,

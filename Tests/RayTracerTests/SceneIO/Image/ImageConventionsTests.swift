@@ -5,7 +5,7 @@ import XCTest
 @testable import SceneIO
 @testable import Geometry
 @testable import SceneDescription
-@testable import Numerics
+@testable import ExactArithmetic
 @testable import PlatformSupport
 
 /// How depth becomes 8-bit levels in each style.

@@ -3,7 +3,7 @@ import XCTest
 @testable import SceneIO
 @testable import Geometry
 @testable import SceneDescription
-@testable import Numerics
+@testable import ExactArithmetic
 @testable import PlatformSupport
 
 /// Every format the project writes reads back to the same values.

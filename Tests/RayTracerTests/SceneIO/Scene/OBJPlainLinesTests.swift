@@ -1,7 +1,7 @@
 import XCTest
 
 @testable import Geometry
-@testable import Numerics
+@testable import ExactArithmetic
 @testable import SceneIO
 
 /// Plain vertex and face lines read in one pass (`plainVertex`,

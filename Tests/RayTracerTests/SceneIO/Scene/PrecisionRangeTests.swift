@@ -7,7 +7,7 @@ import XCTest
 @testable import raytrace
 @testable import Geometry
 @testable import SceneDescription
-@testable import Numerics
+@testable import ExactArithmetic
 @testable import PlatformSupport
 
 /// Numbers a render's precision cannot hold are refused where they are

@@ -5,7 +5,7 @@ import XCTest
 @testable import SceneIO
 @testable import Geometry
 @testable import SceneDescription
-@testable import Numerics
+@testable import ExactArithmetic
 @testable import PlatformSupport
 
 /// Each project scene is kept in both formats (scenes/NAME.txt and

@@ -114,12 +114,11 @@ extension Group {
     -> (spheres: [Sphere<Scalar>], others: [Int])?
   {
     func holdsSphere(_ object: SceneObject<Scalar>) -> Bool {
-      switch object {
-      case .sphere: true
-      case .plane, .triangle, .mesh, .shape: false
-      case .group(let group): group.objects.contains(where: holdsSphere)
-      case .transform(let inner): holdsSphere(inner.object)
+      var holds = false
+      object.forEachPlaced(under: nil) { leaf, _ in
+        if leaf.sphere != nil { holds = true }
       }
+      return holds
     }
     return objects.withUnsafeBufferPointer { buffer in
       guard let objects = buffer.baseAddress else { return nil }
@@ -168,12 +167,12 @@ extension Group {
     // mesh joins the list whole (`TriangleList`).
     var counts = (spheres: 0, planes: 0)
     func count(_ object: SceneObject<Scalar>) {
-      switch object {
-      case .sphere: counts.spheres += 1
-      case .plane: counts.planes += 1
-      case .triangle, .mesh, .shape: break
-      case .group(let group): for child in group.objects { count(child) }
-      case .transform(let inner): count(inner.object)
+      object.forEachPlaced(under: nil) { leaf, _ in
+        if leaf.sphere != nil {
+          counts.spheres += 1
+        } else if case .plane = leaf {
+          counts.planes += 1
+        }
       }
     }
     // Each object looked at where the list holds it: a `for object in
@@ -192,66 +191,6 @@ extension Group {
     }
     result.spheres.reserveCapacityOnHugePages(counts.spheres)
     result.planes.reserveCapacity(counts.planes)
-    func collect(
-      _ object: SceneObject<Scalar>,
-      _ transform: (Matrix4<Scalar>, Matrix4<Scalar>)?
-    ) {
-      switch object {
-      case .sphere(let sphere):
-        guard let (matrix, inverse) = transform else {
-          result.spheres.append(sphere)
-          return
-        }
-        if let scale = matrix.similarityScale {
-          result.spheres.append(
-            Sphere(
-              center: matrix.transformPoint(sphere.center),
-              radius: sphere.radius * scale,
-              materialIndex: sphere.materialIndex))
-        } else {
-          result.transformedSpheres.append(
-            TransformedSphere(sphere: sphere, matrix: matrix, inverse: inverse))
-        }
-      case .plane(let plane):
-        guard let (matrix, _) = transform else {
-          result.planes.append(plane)
-          return
-        }
-        let normal = matrix.transformNormal(plane.normal)
-        let point = matrix.transformPoint(plane.normal * plane.offset)
-        result.planes.append(
-          Plane(
-            normal: normal, offset: normal.dot(point),
-            materialIndex: plane.materialIndex))
-      case .triangle(let triangle):
-        guard let (matrix, _) = transform else {
-          result.triangles.append(triangle)
-          return
-        }
-        result.triangles.append(triangle.moved(by: matrix))
-      case .mesh(let mesh):
-        // Untransformed, the mesh's own storage, shared.
-        result.triangles.append(
-          transform.map { mesh.moved(by: $0.0) } ?? mesh)
-      case .group(let group):
-        for child in group.objects { collect(child, transform) }
-      case .transform(let inner):
-        let combined =
-          transform.map { ($0.0 * inner.matrix, inner.inverse * $0.1) }
-          ?? (inner.matrix, inner.inverse)
-        collect(inner.object, combined)
-      case .shape(let shape):
-        guard let (matrix, inverse) = transform else {
-          result.shapes.append(PlacedShape(shape.object))
-          return
-        }
-        // Only a Double scene is read: the generic matrix is Double's.
-        result.shapes.append(
-          PlacedShape(
-            shape.object,
-            placement: (Matrix4<Double>(matrix), Matrix4<Double>(inverse))))
-      }
-    }
     objects.withUnsafeBufferPointer { buffer in
       guard let objects = buffer.baseAddress else { return }
       for index in buffer.indices {
@@ -259,77 +198,60 @@ extension Group {
         if let sphere = objects[index].sphere {
           result.spheres.append(sphere)
         } else {
-          collect(objects[index], nil)
+          objects[index].forEachPlaced(under: nil) { leaf, placement in
+            result.add(leaf, placedBy: placement)
+          }
         }
       }
     }
   }
 }
 
-extension Triangle {
-  /// The triangle placed by `matrix`: its vertices moved, its vertex
-  /// normals by the inverse transpose.
-  func moved(by matrix: Matrix4<Scalar>) -> Triangle {
-    var moved = self
-    moved.v0 = matrix.transformPoint(v0)
-    moved.v1 = matrix.transformPoint(v1)
-    moved.v2 = matrix.transformPoint(v2)
-    if let normals = vertexNormals {
-      // Not normalised one by one: the hit's interpolation then gives
-      // the transform of the object's interpolated normal.
-      // A scale far from 1 (`UniformScale 1e20`) would take the
-      // cofactors, its square, out of range: they are taken of the
-      // matrix rescaled by a power of two, the same directions.
-      let normalMatrix = matrix.withLinearPartNearOne()
-      moved.vertexNormals = Triangle.VertexNormals(
-        normalMatrix.cofactorNormal(normals.n0),
-        normalMatrix.cofactorNormal(normals.n1),
-        normalMatrix.cofactorNormal(normals.n2))
-    }
-    return moved
-  }
-}
-
-extension Matrix4 {
-  /// s when the linear part is s times a rotation (LᵀL = s²·I to within
-  /// 16 ε relative) and the matrix is affine: a sphere then stays a sphere
-  /// of radius r·s, and is best kept as one.
-  @usableFromInline
-  package var similarityScale: Scalar? {
-    guard isAffine else { return nil }
-    let columns = [
-      Vector3(m00, m10, m20), Vector3(m01, m11, m21), Vector3(m02, m12, m22),
-    ]
-    let squared = columns[0].lengthSquared
-    guard squared > 0, squared.isFinite else { return nil }
-    let tolerance = 16 * Scalar.ulpOfOne * squared
-    for i in 0..<3 {
-      for j in 0..<3 {
-        let product = columns[i].dot(columns[j])
-        let expected: Scalar = i == j ? squared : 0
-        if (product - expected).magnitude > tolerance { return nil }
+extension Primitives {
+  /// Adds one object of the scene where `placement` puts it
+  /// (`Group.forEachPlaced`): in the world where it stays the same kind
+  /// of object there (`Sphere.placed`, `Plane.placed`, `Triangle.moved`,
+  /// `TriangleMesh.moved`), a sphere stretched into an ellipsoid as a
+  /// transformed sphere, a shape of one's own with its placement. The one
+  /// place the fast engine looks at a scene object's kind.
+  mutating func add(
+    _ object: SceneObject<Scalar>, placedBy placement: Placement<Scalar>?
+  ) {
+    switch object {
+    case .sphere(let sphere):
+      guard let (matrix, inverse) = placement else {
+        spheres.append(sphere)
+        return
       }
+      if let placed = sphere.placed(by: matrix) {
+        spheres.append(placed)
+      } else {
+        transformedSpheres.append(
+          TransformedSphere(sphere: sphere, matrix: matrix, inverse: inverse))
+      }
+    case .plane(let plane):
+      planes.append(placement.map { plane.placed(by: $0.matrix) } ?? plane)
+    case .triangle(let triangle):
+      triangles.append(
+        placement.map { triangle.moved(by: $0.matrix) } ?? triangle)
+    case .mesh(let mesh):
+      // Unplaced, the mesh's own storage, shared.
+      triangles.append(placement.map { mesh.moved(by: $0.matrix) } ?? mesh)
+    case .shape(let shape):
+      // Only a Double scene is read: the generic matrix is Double's.
+      shapes.append(
+        PlacedShape(
+          shape.object,
+          placement: placement.map {
+            (Matrix4<Double>($0.matrix), Matrix4<Double>($0.inverse))
+          }))
+    case .group, .transform:
+      preconditionFailure("Group.forEachPlaced yields neither")
     }
-    return squared.squareRoot()
   }
 }
 
 extension TriangleMesh {
-  /// The mesh placed by `matrix`, as `Triangle.moved(by:)` places each of
-  /// its triangles: every vertex moved, every normal by the cofactors of
-  /// the matrix rescaled near 1. Each shared value is moved once, by the
-  /// same operations, so each triangle is the one `moved` gives.
-  func moved(by matrix: Matrix4<Scalar>) -> TriangleMesh {
-    var moved = self
-    moved.storage = StorageTag()
-    moved.vertices = vertices.map { matrix.transformPoint($0) }
-    if normalsFollowVertices || !normalIndices.isEmpty {
-      let normalMatrix = matrix.withLinearPartNearOne()
-      moved.normals = normals.map { normalMatrix.cofactorNormal($0) }
-    }
-    return moved
-  }
-
   /// Every vertex times `factor`, as `Triangle.scaled(by:)`.
   func scaled(by factor: Scalar) -> TriangleMesh {
     var scaled = self
@@ -338,6 +260,7 @@ extension TriangleMesh {
     return scaled
   }
 }
+
 
 extension SceneObject {
   /// The sphere this entry is, if it is one. Asked of an entry where its

@@ -91,28 +91,17 @@ package enum LengthScale {
         S(Double.greatestFiniteMagnitude).exponent)) / 4
   }
 
-  /// Calls `body` with every primitive of `object` in the world: objects
-  /// outside transforms as they are, each transform's placed once
-  /// (`Group.flattened`), so a mesh is not flattened a second time.
-  static func forEachPrimitive(
+  /// Calls `body` with every primitive of `object` in the world, placed
+  /// as the render places them (`Group.flattened`). Shapes of one's own
+  /// are tested in the world's units, at no scale: they have none.
+  package static func forEachPrimitive(
     in object: SceneObject<Double>, _ body: (Primitive) -> Void
   ) {
-    switch object {
-    case .sphere(let sphere): body(.sphere(sphere))
-    case .plane(let plane): body(.plane(plane))
-    case .triangle(let triangle): body(.triangle(triangle))
-    case .mesh(let mesh):
-      for triangle in mesh { body(.triangle(triangle)) }
-    case .group(let group):
-      for child in group.objects { forEachPrimitive(in: child, body) }
-    case .transform: Group([object]).flattened().forEach(body)
-    // Other shapes are tested in the world's units, at no scale.
-    case .shape: break
-    }
+    Group([object]).flattened().forEach(body)
   }
 
   /// One primitive of a flattened scene.
-  enum Primitive {
+  package enum Primitive {
     case sphere(Sphere<Double>)
     case plane(Plane<Double>)
     case triangle(Triangle<Double>)
@@ -121,7 +110,7 @@ package enum LengthScale {
     /// Its largest length seen from `eye`, for the scale it is traced
     /// at: a sphere's centre's offset or its radius, a triangle's farthest
     /// vertex, a plane's distance, an ellipsoid's reach (in max-norm).
-    func reach(from eye: Vector3<Double>) -> Double {
+    package func reach(from eye: Vector3<Double>) -> Double {
       switch self {
       case .sphere(let sphere): sphere.reach(from: eye)
       case .plane(let plane): LengthScale.distance(plane, eye: eye)
@@ -160,7 +149,7 @@ extension Sphere<Double> {
 extension TransformedSphere<Double> {
   /// The length of its shortest axis, nearly: the sphere's radius times
   /// the shortest column of the matrix's linear part.
-  var shortestAxis: Double {
+  package var shortestAxis: Double {
     let m = matrix
     // Each column's length without squaring it at its own scale, where
     // the squares of an axis of 1e-200 would underflow.
@@ -212,42 +201,6 @@ extension Primitives {
   }
 }
 
-extension Group {
-  /// Every length times `factor`, a power of two (see `LengthScale`).
-  @usableFromInline
-  package func scaled(by factor: Scalar) -> Group {
-    Group(objects.map { $0.scaled(by: factor) })
-  }
-}
-
-extension SceneObject {
-  /// Every length times `factor`, a power of two: a transform's matrix M
-  /// becomes S·M (its rows scaled; the object, in its own space, is
-  /// unchanged) and its inverse M⁻¹·S⁻¹.
-  @usableFromInline
-  package func scaled(by factor: Scalar) -> SceneObject {
-    switch self {
-    case .sphere(let sphere): .sphere(sphere.scaled(by: factor))
-    case .plane(let plane): .plane(plane.scaled(by: factor))
-    case .triangle(let triangle): .triangle(triangle.scaled(by: factor))
-    case .mesh(let mesh):
-      .mesh(mesh.scaled(by: factor))
-    case .group(let group): .group(group.scaled(by: factor))
-    case .transform(let transform):
-      .transform(
-        Transform(
-          matrix: transform.matrix.rowsScaled(by: factor),
-          inverse: transform.inverse.columnsScaled(by: 1 / factor),
-          object: transform.object))
-    case .shape:
-      .transform(
-        Transform(
-          matrix: .uniformScale(factor), inverse: .uniformScale(1 / factor),
-          object: self))
-    }
-  }
-}
-
 extension Sphere {
   func scaled(by factor: Scalar) -> Sphere {
     Sphere(
@@ -271,44 +224,5 @@ extension Triangle {
     triangle.v1 = v1 * factor
     triangle.v2 = v2 * factor
     return triangle
-  }
-}
-
-extension Matrix4 {
-  /// S·M for S = diag(f, f, f, 1): the first three rows times f.
-  func rowsScaled(by f: Scalar) -> Matrix4 {
-    var m = self
-    m.m00 *= f; m.m01 *= f; m.m02 *= f; m.m03 *= f
-    m.m10 *= f; m.m11 *= f; m.m12 *= f; m.m13 *= f
-    m.m20 *= f; m.m21 *= f; m.m22 *= f; m.m23 *= f
-    return m
-  }
-
-  /// The matrix with its rows scaled by a power of two that brings its
-  /// largest linear entry near 1, when that entry is beyond 2^±30; itself
-  /// otherwise. Its cofactors (`cofactorNormal`) then stay in range, their
-  /// directions exactly those of the matrix's.
-  func withLinearPartNearOne() -> Matrix4 {
-    let largest = Swift.max(
-      m00.magnitude, m01.magnitude, m02.magnitude, m10.magnitude,
-      m11.magnitude, m12.magnitude, m20.magnitude, m21.magnitude,
-      m22.magnitude)
-    guard largest > 0, largest.isFinite else { return self }
-    let exponent = Int(largest.exponent)
-    guard !(-30...30).contains(exponent) else { return self }
-    return rowsScaled(
-      by: Scalar(
-        sign: .plus, exponent: Scalar.Exponent(-exponent),
-        significand: 1))
-  }
-
-  /// M·S for S = diag(f, f, f, 1): the first three columns times f.
-  func columnsScaled(by f: Scalar) -> Matrix4 {
-    var m = self
-    m.m00 *= f; m.m01 *= f; m.m02 *= f
-    m.m10 *= f; m.m11 *= f; m.m12 *= f
-    m.m20 *= f; m.m21 *= f; m.m22 *= f
-    m.m30 *= f; m.m31 *= f; m.m32 *= f
-    return m
   }
 }

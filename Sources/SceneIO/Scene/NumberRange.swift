@@ -1,6 +1,10 @@
-import Geometry
-import SceneDescription
-import PlatformSupport
+/// The binary precision a scene's numbers must fit: the range the
+/// readers are handed (`SceneOptions.precision`) and check every number
+/// against where it is written.
+package enum NumberRange: String, CaseIterable, Sendable {
+  case float
+  case double
+}
 
 /// Whether the numbers of a scene can be held in the precision it is
 /// rendered in.
@@ -10,11 +14,10 @@ import PlatformSupport
 /// lost; 1e-50 becomes 0, 1e-40 a subnormal whose square is 0. Rather than
 /// draw such a scene silently empty or silently full, the readers refuse
 /// it where the number is written. They learn the precision from
-/// `SceneOptions.precision` (the render setting, passed down by the
-/// command line) rather than recording every number's position for a later
+/// `SceneOptions.precision` (handed down by their caller) rather than recording every number's position for a later
 /// check: the position is at hand while a number is read, and a scene
 /// read for one precision is not reused for another.
-extension Precision {
+extension NumberRange {
   /// The largest finite magnitude of the precision.
   @usableFromInline
   package var largestFinite: Double {
@@ -52,8 +55,8 @@ extension Precision {
   /// reading made of `text`: infinite beyond Double's range, 0 below it,
   /// so `text` tells a written zero from one that underflowed.
   ///
-  /// The message names the text, the precision and its limit; `remedy`
-  /// says what would hold it.
+  /// The message names the text, the precision and its limit; the
+  /// error carries the range it exceeded (`SceneError.exceeded`).
   @usableFromInline
   package func rangeProblem(_ value: Double, text: String) -> String? {
     let overflows =

@@ -1,5 +1,4 @@
 import Geometry
-import SceneDescription
 
 /// Error-free transformations and the sums and dot products built on them
 /// (Ogita, Rump and Oishi, "Accurate sum and dot product", SIAM J. Sci.

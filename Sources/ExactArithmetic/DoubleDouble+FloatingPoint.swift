@@ -1,6 +1,4 @@
 import Geometry
-import SceneDescription
-import PlatformSupport
 
 // DoubleDouble as a FloatingPoint: sign, exponent and significand in the
 // 106-bit model, neighbours, classification and the arithmetic

@@ -2,7 +2,7 @@ import Geometry
 import PlatformSupport
 
 // The C library's Double functions (its module is imported for the whole
-// package in System/Platform.swift), named at file scope where the names
+// package by PlatformSupport's Platform.swift), named at file scope where the names
 // are not shadowed by DoubleDouble's static members below.
 private func cSin(_ x: Double) -> Double { sin(x) }
 private func cCos(_ x: Double) -> Double { cos(x) }

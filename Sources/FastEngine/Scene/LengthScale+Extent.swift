@@ -14,9 +14,9 @@ extension LengthScale {
   /// fails at f when one of these minima does (and, when a minimum is
   /// itself below the range, perhaps when none does: a second pass, per
   /// primitive, decides).
-  struct Extent {
+  package struct Extent {
     let eye: Vector3<Double>
-    var largest: Double
+    package var largest: Double
     var radiusSquared = Double.infinity
     var edgeSquared = Double.infinity
     var edgeSquaredReach = Double.infinity
@@ -24,7 +24,7 @@ extension LengthScale {
     var planeDistance = Double.infinity
     /// The largest reach of an ellipsoid over its shortest axis: its eye
     /// in its own space is that far from its centre, in radii.
-    var reachInAxes = 0.0
+    package var reachInAxes = 0.0
 
     /// Threads that measure a long list (a mesh's triangles, a group's
     /// entries, the spheres), each a part of it (`addInParts`).
@@ -32,7 +32,7 @@ extension LengthScale {
 
     /// Nothing measured yet: the eye's own coordinates are not a length
     /// of the scene (see `LengthScale`).
-    init(eye: Vector3<Double>, threads: Int = 1) {
+    package init(eye: Vector3<Double>, threads: Int = 1) {
       self.eye = eye
       self.threads = threads
       largest = 0
@@ -52,30 +52,24 @@ extension LengthScale {
       reachInAxes = Swift.max(reachInAxes, other.reachInAxes)
     }
 
-    mutating func measure(_ object: SceneObject<Double>) {
-      switch object {
-      case .sphere(let sphere): add(sphere)
-      case .plane(let plane): add(plane)
-      case .triangle(let triangle): add(triangle)
-      case .mesh(let mesh): add(mesh)
-      case .group(let group):
-        // Spheres where the list holds them, not copied out to be passed
-        // (`SceneObject.sphere`): 10⁶ spheres 30 ms sooner.
-        group.objects.withUnsafeBufferPointer { buffer in
-          guard let children = buffer.baseAddress else { return }
-          addInParts(buffer.count) { extent, range in
-            for index in range {
-              if let sphere = children[index].sphere {
-                extent.add(sphere)
-              } else {
-                extent.measure(children[index])
-              }
-            }
+    /// Every primitive of `group`, placed as the render places them: the
+    /// spheres straight in it where its list holds them, in parts (not
+    /// copied out to be passed, `SceneObject.sphere`: 10⁶ spheres 30 ms
+    /// sooner), the rest flattened (`Group.flattened`).
+    package mutating func measure(_ group: Group<Double>) {
+      var others: [SceneObject<Double>] = []
+      group.objects.withUnsafeBufferPointer { buffer in
+        guard let children = buffer.baseAddress else { return }
+        addInParts(buffer.count) { extent, range in
+          for index in range {
+            if let sphere = children[index].sphere { extent.add(sphere) }
           }
         }
-      case .transform: add(Group([object]).flattened())
-      case .shape: break
+        for index in buffer.indices where children[index].sphere == nil {
+          others.append(children[index])
+        }
       }
+      add(Group(others).flattened(threads: threads))
     }
 
     /// Every primitive of `all`.
@@ -168,7 +162,7 @@ extension LengthScale {
 
   /// A triangle's longest edge and the farthest of its vertices from the
   /// eye, in max-norm.
-  static func edgeAndReach(_ triangle: Triangle<Double>, eye: Vector3<Double>)
+  package static func edgeAndReach(_ triangle: Triangle<Double>, eye: Vector3<Double>)
     -> (edge: Double, reach: Double)
   {
     edgeAndReach((triangle.v0, triangle.v1, triangle.v2), eye: eye)

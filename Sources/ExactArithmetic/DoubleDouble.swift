@@ -1,6 +1,4 @@
 import Geometry
-import SceneDescription
-import PlatformSupport
 
 /// A floating-point number held as the unevaluated sum `hi + lo` of two
 /// Doubles: the reference precision where the platform has no Float80.

@@ -1,6 +1,4 @@
 import Geometry
-import SceneDescription
-import PlatformSupport
 
 /// Sums of Double terms held exactly, as Shewchuk's expansions ("Adaptive
 /// Precision Floating-Point Arithmetic and Fast Robust Geometric
@@ -28,6 +26,10 @@ package struct ExactSum {
   package init(capacity: Int = 16) {
     storage = Array(repeating: 0, count: capacity)
   }
+
+  /// Back to zero, its storage kept for the next sum.
+  @inlinable
+  package mutating func removeAll() { count = 0 }
 
   /// The components, smallest first.
   @inlinable package var components: ArraySlice<Double> { storage[0..<count] }

@@ -37,7 +37,7 @@ extension LengthScale {
       }
     }
     var extent = Extent(eye: scene.camera.center, threads: threads)
-    extent.measure(.group(scene.root))
+    extent.measure(scene.root)
     if let failure = firstFailure(
       in: scene, extent, smallest: precision.smallestNormal,
       commonScale: scale, ownScale: scale)
@@ -83,19 +83,20 @@ extension LengthScale {
     return found
   }
 
-  /// Why the course engine, which computes with the scene's own lengths
-  /// in Double and no rescaling, cannot draw `scene` right, or nil: an
-  /// object whose squares at scale 1 fall below Double's normal range (as
-  /// `problem` judges them at its own scale: a sphere of radius 1e-200,
-  /// wherever the eye is), or whose products with its distance from the
-  /// eye overflow (`tooLargeUnscaled`: a sphere 1e200 from the eye). Every
-  /// scene `problem` refuses in double is refused here too. The remedy is
-  /// the fast engine (`Remedy.fastEngine`).
-  @usableFromInline
-  package static func unscaledProblem(_ scene: Scene) -> String? {
+  /// What no rescaling of `scene` leaves in range when it is computed at
+  /// its own lengths, in Double, unscaled, or nil: an object whose squares
+  /// at scale 1 fall below Double's normal range (as `problem` judges
+  /// them at its own scale: a sphere of radius 1e-200, wherever the eye
+  /// is), or whose products with its distance from the eye overflow
+  /// (`tooLargeUnscaled`: a sphere 1e200 from the eye; `beyondRange`
+  /// true). Every scene `problem` refuses in double fails here too. The
+  /// pipeline words it for the engine that computes so.
+  package static func unscaledFailure(_ scene: Scene)
+    -> (failure: Failure, beyondRange: Bool)?
+  {
     let eye = scene.camera.center
     var extent = Extent(eye: eye)
-    extent.measure(.group(scene.root))
+    extent.measure(scene.root)
     // A second pass only where some product may overflow: a triangle's
     // edge is at most twice its reach, so below 2^509 none does.
     var large: Failure?
@@ -110,17 +111,11 @@ extension LengthScale {
       ?? firstFailure(
         in: scene, extent, smallest: Double.leastNormalMagnitude,
         commonScale: { _ in 1 }, ownScale: { _ in 1 })
-    return failure.map {
-      "the course engine, which computes with the scene's own lengths, "
-        + "cannot draw \($0.object): \($0.measure) is "
-        + (large != nil
-          ? "beyond double's range" : "below double's normal range")
-
-    }
+    return failure.map { ($0, large != nil) }
   }
 
-  /// The primitive's failure when what the course engine multiplies by
-  /// its distance from the eye overflows Double: a sphere's |o − c|²
+  /// The primitive's failure when what a computation at scale 1
+  /// multiplies by its distance from the eye overflows Double: a sphere's |o − c|²
   /// (three squares: its reach below 2^510), an ellipsoid's local eye
   /// M⁻¹·o squared (its reach over its shortest axis below 2^510), a
   /// triangle's s × edge (its reach times its longest edge below 2^1020,
@@ -160,7 +155,7 @@ extension LengthScale {
   /// scale and the smallest measures, which scale as its powers; a
   /// second, to find the object, only when one fails. `measured` is the
   /// scene's `Extent` when the caller has it.
-  static func firstFailure(
+  package static func firstFailure(
     in scene: Scene, _ measured: Extent? = nil, smallest: Double,
     commonScale: (Double) -> Double, ownScale: (Double) -> Double
   ) -> Failure? {
@@ -169,7 +164,7 @@ extension LengthScale {
       measured
       ?? {
         var extent = Extent(eye: eye)
-        extent.measure(.group(scene.root))
+        extent.measure(scene.root)
         return extent
       }()
     let scale = commonScale(extent.largest)
@@ -191,12 +186,12 @@ extension LengthScale {
   /// from the eye that sets the scale it is traced at (nil for a plane,
   /// whose only length is its distance from the eye), and the measure
   /// whose square falls below the range there.
-  struct Failure {
-    var object: String
-    var beside: String?
-    var measure: String
+  package struct Failure {
+    package var object: String
+    package var beside: String?
+    package var measure: String
 
-    init(_ primitive: Primitive, beside: String?, measure: String) {
+    package init(_ primitive: Primitive, beside: String?, measure: String) {
       object = primitive.description
       self.beside = beside
       self.measure = measure
@@ -276,7 +271,7 @@ extension LengthScale {
 
   /// |v|, without squaring v at its own scale (where the squares of an
   /// offset of 1e-200 would underflow).
-  static func length(_ v: Vector3<Double>) -> Double {
+  package static func length(_ v: Vector3<Double>) -> Double {
     let largest = v.maxMagnitude
     guard largest > 0, largest.isFinite else { return largest }
     return (v / largest).length * largest
@@ -285,7 +280,7 @@ extension LengthScale {
 
 extension LengthScale.Primitive: CustomStringConvertible {
   /// The primitive as a message names it, by its own values.
-  var description: String {
+  package var description: String {
     switch self {
     case .sphere(let sphere):
       let c = sphere.center

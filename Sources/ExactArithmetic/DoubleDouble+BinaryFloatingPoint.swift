@@ -1,6 +1,4 @@
 import Geometry
-import SceneDescription
-import PlatformSupport
 
 // DoubleDouble as a BinaryFloatingPoint: the 106-bit model of the type's
 // comment, with Double's exponent range and encoding (bias 1023, exponent

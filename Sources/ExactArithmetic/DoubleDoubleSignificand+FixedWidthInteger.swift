@@ -1,6 +1,4 @@
 import Geometry
-import SceneDescription
-import PlatformSupport
 
 extension DoubleDoubleSignificand: FixedWidthInteger, UnsignedInteger {
   @usableFromInline

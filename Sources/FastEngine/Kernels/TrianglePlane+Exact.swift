@@ -1,3 +1,4 @@
+import ExactArithmetic
 import Geometry
 import SceneDescription
 import PlatformSupport
@@ -153,7 +154,7 @@ extension TrianglePlane {
     func crossComponent(_ p: Pair, _ q: Pair, _ r: Pair, _ s: Pair)
       -> (hi: Double, lo: Double)
     {
-      scratch.count = 0
+      scratch.removeAll()
       scratch.add(p.sum, times: q.sum)
       scratch.add(p.sum, times: q.error)
       scratch.add(p.error, times: q.sum)
