@@ -1,6 +1,7 @@
 import XCTest
 
 @testable import FastEngine
+@testable import Pipeline
 @testable import SceneIO
 @testable import Geometry
 @testable import SceneDescription
@@ -60,7 +61,8 @@ struct EllipsoidCase: CustomStringConvertible {
   func scene(_ precision: Precision) throws -> Scene {
     try SceneParser.parse(
       text, file: "\(name).txt",
-      options: SceneOptions(style: .course, precision: precision))
+      options: SceneOptions(
+        style: .course, precision: precision.numberRange))
   }
 }
 

@@ -1,6 +1,7 @@
 @testable import Geometry
 @testable import SceneDescription
 @testable import ExactArithmetic
+@testable import FastEngine
 @testable import PlatformSupport
 
 /// An exact binary rational m·2ᵉ (m an integer of any size): sums,

@@ -1,6 +1,7 @@
 @testable import Geometry
 @testable import SceneDescription
 @testable import ExactArithmetic
+@testable import FastEngine
 @testable import PlatformSupport
 
 /// The exact intersection of a ray E + t·d (E and d exactly as given, in

@@ -1,4 +1,5 @@
 @testable import ExactArithmetic
+@testable import FastEngine
 
 // The tests' exact reference for whole powers (specular highlights):
 // not in Numerics, where no render asks a double-double for one.

@@ -5,6 +5,7 @@ import XCTest
 @testable import SceneIO
 @testable import SceneDescription
 @testable import ExactArithmetic
+@testable import FastEngine
 
 /// `raytrace report --plot`: the SVG's marks read back, through the axes
 /// each panel states, to the numbers of the rows they plot.

@@ -234,7 +234,7 @@ final class StiffSuiteTests: XCTestCase {
         XCTAssertFalse(Self.doubleOnly.contains(name), name)
       } catch {
         XCTAssertTrue(Self.doubleOnly.contains(name), "\(name): \(error)")
-        XCTAssertEqual(error.remedy, .doublePrecision, error.description)
+        XCTAssertEqual(error.exceeded, .float, error.description)
       }
     }
   }

@@ -3,6 +3,7 @@ import XCTest
 @testable import Geometry
 @testable import SceneDescription
 @testable import ExactArithmetic
+@testable import FastEngine
 @testable import PlatformSupport
 
 /// `ExactSum` against `ExactDyadic` (schoolbook integers, no

@@ -2,6 +2,7 @@ import XCTest
 
 @testable import Geometry
 @testable import ExactArithmetic
+@testable import FastEngine
 
 /// `specularPower` (the fast engine's highlight^shininess) against xⁿ in
 /// double-double (relative error near 2n·2⁻¹⁰⁴, far below the bound

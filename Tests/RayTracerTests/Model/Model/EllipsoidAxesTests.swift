@@ -3,6 +3,7 @@ import XCTest
 @testable import Geometry
 @testable import SceneDescription
 @testable import ExactArithmetic
+@testable import FastEngine
 @testable import PlatformSupport
 
 /// `EllipsoidAxes` checked exactly against the Double matrix it was given,

@@ -4,6 +4,8 @@ import XCTest
 @testable import Geometry
 @testable import SceneDescription
 @testable import ExactArithmetic
+@testable import FastEngine
+@testable import Pipeline
 @testable import PlatformSupport
 
 /// Refusals that are true of the scene: judged from the eye, naming the
@@ -113,14 +115,14 @@ extension LengthScaleEyeTests {
     let speck = try sphere(eye: 1, radius: 1e-200, at: 3e-200)
     XCTAssertNil(LengthScale.problem(speck, precision: .double))
     XCTAssertEqual(
-      LengthScale.unscaledProblem(speck),
+      CourseEngineLimits.problem(speck),
       "the course engine, which computes with the scene's own lengths, "
         + "cannot draw a sphere of radius 1e-200 (centre 1.0 0.0 -3e-200): "
         + "its radius squared is below double's normal range")
     let far = try sphere(eye: 0, radius: 1e200, at: 3e200)
     XCTAssertNil(LengthScale.problem(far, precision: .double))
     XCTAssertEqual(
-      LengthScale.unscaledProblem(far),
+      CourseEngineLimits.problem(far),
       "the course engine, which computes with the scene's own lengths, "
         + "cannot draw a sphere of radius 1e+200 (centre 0.0 0.0 -3e+200): "
         + "the square of its distance from the eye (3e+200) is beyond "
@@ -143,16 +145,16 @@ extension LengthScaleEyeTests {
         + "shortest axis over that distance, squared, is below double's "
         + "normal range at any scale")
     XCTAssertEqual(
-      LengthScale.unscaledProblem(thin),
+      CourseEngineLimits.problem(thin),
       "the course engine, which computes with the scene's own lengths, "
         + "cannot draw a transformed sphere whose shortest axis is 1e-100: "
         + "the square of its reach from the eye (1e+60 on an axis) over its "
         + "shortest axis is beyond double's range")
     // An eye far from the origin is no problem for Double's own lengths.
     XCTAssertNil(
-      LengthScale.unscaledProblem(try Self.view(eye: 1e14, scale: 1)))
+      CourseEngineLimits.problem(try Self.view(eye: 1e14, scale: 1)))
     XCTAssertNil(
-      LengthScale.unscaledProblem(try Self.view(eye: 1e300, scale: 1)))
+      CourseEngineLimits.problem(try Self.view(eye: 1e300, scale: 1)))
   }
 
   /// An ellipsoid whose centre is more than 2⁶¹ (float) or 2⁵⁰⁹ (double)

@@ -1,6 +1,7 @@
 import XCTest
 
 @testable import FastEngine
+@testable import Pipeline
 @testable import Measurement
 @testable import SceneIO
 @testable import Geometry
@@ -192,7 +193,8 @@ extension LengthScaleEyeTests {
       """
     return try SceneParser.parse(
       text, file: "mesh-1e14.txt",
-      options: SceneOptions(style: .course, precision: precision))
+      options: SceneOptions(
+        style: .course, precision: precision.numberRange))
   }
 
   /// Every far eye's scene, specks beside a planet included, renders as

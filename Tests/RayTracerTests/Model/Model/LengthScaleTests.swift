@@ -1,6 +1,7 @@
 import XCTest
 
 @testable import FastEngine
+@testable import Pipeline
 @testable import Measurement
 @testable import SceneIO
 @testable import Geometry
@@ -270,7 +271,8 @@ final class LengthScaleTests: XCTestCase {
       """
     return try SceneParser.parse(
       text, file: "icosphere.txt",
-      options: SceneOptions(style: .course, precision: precision))
+      options: SceneOptions(
+        style: .course, precision: precision.numberRange))
   }
 
   /// No pixel is lost along the mesh's shared edges at any scale from
@@ -330,12 +332,12 @@ final class LengthScaleTests: XCTestCase {
     }
     let group = Group(objects)
     var one = LengthScale.Extent(eye: eye)
-    one.measure(.group(group))
+    one.measure(group)
     var oneFlat = LengthScale.Extent(eye: eye)
     oneFlat.add(group.flattened())
     for threads in Self.quickCases([2, 3], half: 1) {
       var parts = LengthScale.Extent(eye: eye, threads: threads)
-      parts.measure(.group(group))
+      parts.measure(group)
       XCTAssertEqual(fields(parts), fields(one), "group, \(threads) threads")
       var flat = LengthScale.Extent(eye: eye, threads: threads)
       flat.add(group.flattened(threads: threads))

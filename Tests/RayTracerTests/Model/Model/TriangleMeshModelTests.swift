@@ -96,8 +96,8 @@ final class TriangleMeshModelTests: XCTestCase {
     }
     // Scaled by a power of two, triangle by triangle.
     XCTAssertEqual(
-      asMesh[2].scaled(by: 0x1p-70).flattened().triangles,
-      asGroup[2].scaled(by: 0x1p-70).flattened().triangles)
+      asMesh[2].flattened().scaled(by: 0x1p-70).triangles,
+      asGroup[2].flattened().scaled(by: 0x1p-70).triangles)
   }
 
   /// The scale checks see a mesh's triangles as the group's: a triangle

@@ -3,6 +3,7 @@ import XCTest
 @testable import Geometry
 @testable import SceneDescription
 @testable import ExactArithmetic
+@testable import FastEngine
 @testable import PlatformSupport
 
 /// The watertight test's own t against the exact one, over random

@@ -4,6 +4,7 @@ import XCTest
 @testable import Geometry
 @testable import SceneDescription
 @testable import ExactArithmetic
+@testable import FastEngine
 @testable import PlatformSupport
 
 /// Every format the project writes reads back to the same values.

@@ -5,6 +5,7 @@ import XCTest
 @testable import Geometry
 @testable import SceneDescription
 @testable import ExactArithmetic
+@testable import FastEngine
 @testable import PlatformSupport
 
 /// A mesh file a scene names many times is read once: every use shares

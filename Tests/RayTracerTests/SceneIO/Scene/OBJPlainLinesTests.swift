@@ -2,6 +2,7 @@ import XCTest
 
 @testable import Geometry
 @testable import ExactArithmetic
+@testable import FastEngine
 @testable import SceneIO
 
 /// Plain vertex and face lines read in one pass (`plainVertex`,
@@ -32,7 +33,7 @@ final class OBJPlainLinesTests: XCTestCase {
         text += line + (random.next() % 8 == 0 ? "\r\n" : "\n")
       }
       if random.next() % 4 == 0 { text.removeLast() }
-      for precision in [Precision.double, .float] {
+      for precision in [NumberRange.double, .float] {
         for speculative in [false, true] {
           let (plain, tokens) = (
             parsed(text, precision, speculative, plain: true),
@@ -49,7 +50,7 @@ final class OBJPlainLinesTests: XCTestCase {
   }
 
   private func parsed(
-    _ text: String, _ precision: Precision, _ speculative: Bool, plain: Bool
+    _ text: String, _ precision: NumberRange, _ speculative: Bool, plain: Bool
   ) -> String {
     let bytes = Array(text.utf8)
     return bytes.withUnsafeBufferPointer { bytes in

@@ -11,7 +11,7 @@ import XCTest
 @testable import PlatformSupport
 
 /// Numbers a render's precision cannot hold are refused where they are
-/// written (`Precision.rangeProblem`), in both scene formats and in OBJ
+/// written (`NumberRange.rangeProblem`), in both scene formats and in OBJ
 /// meshes, instead of drawing an empty or a full image.
 final class PrecisionRangeTests: XCTestCase {
   static let camera = SceneParserTests.camera
@@ -22,7 +22,7 @@ final class PrecisionRangeTests: XCTestCase {
   }
 
   func assertError(
-    _ text: String, _ precision: Precision, line: Int, column: Int,
+    _ text: String, _ precision: NumberRange, line: Int, column: Int,
     _ message: String, file: StaticString = #filePath,
     line testLine: UInt = #line
   ) {
@@ -39,7 +39,7 @@ final class PrecisionRangeTests: XCTestCase {
     }
   }
 
-  func parses(_ text: String, _ precision: Precision) -> Bool {
+  func parses(_ text: String, _ precision: NumberRange) -> Bool {
     (try? SceneParser.parse(
       text, file: "test.txt",
       options: SceneOptions(style: .course, precision: precision))) != nil
