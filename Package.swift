@@ -207,24 +207,61 @@ let package = Package(
         "FastEngine", "Pipeline", "Measurement", argumentParser,
       ]
     ),
+    // Helpers more than one test target uses (seeded random numbers,
+    // errors in ulps, exact references, the project's files): a library
+    // target, as swift-argument-parser's ArgumentParserTestHelpers is.
+    .target(
+      name: "TestSupport", dependencies: ["Geometry", "Numerics"],
+      path: "Tests/TestSupport"
+    ),
+    // One test target per source target, each depending on what it
+    // imports; only raytraceTests on the executable.
+    .testTarget(
+      name: "GeometryTests",
+      dependencies: ["Geometry", "Numerics", "TestSupport"]
+    ),
+    .testTarget(
+      name: "NumericsTests",
+      dependencies: ["Numerics", "Geometry", "TestSupport"]
+    ),
+    .testTarget(
+      name: "SceneIOTests",
+      dependencies: [
+        "SceneIO", "Geometry", "SceneDescription", "Numerics",
+        "PlatformSupport", "CZlib", "TestSupport",
+      ]
+    ),
+    .testTarget(
+      name: "FastEngineTests",
+      dependencies: [
+        "FastEngine", "Geometry", "SceneDescription", "Numerics", "SceneIO",
+        "PlatformSupport", "TestSupport",
+      ]
+    ),
+    .testTarget(
+      name: "PipelineTests",
+      dependencies: ["Pipeline", "Geometry", "SceneIO", "TestSupport"]
+    ),
     // The course's own tests: the course's closure only.
     .testTarget(
       name: "CourseTests",
       dependencies: ["Course", "Geometry", "SceneDescription"]
     ),
-    // The two engines side by side: their agreement and `--check`.
+    // `raytrace report`, `bench`, `compare`, and the two engines side by
+    // side: their agreement and `--check`.
     .testTarget(
-      name: "EngineTests",
+      name: "MeasurementTests",
       dependencies: [
-        "Course", "Geometry", "SceneDescription", "Numerics", "SceneIO",
-        "FastEngine", "Pipeline", "Measurement",
+        "Measurement", "Course", "Geometry", "SceneDescription", "Numerics",
+        "PlatformSupport", "SceneIO", "FastEngine", "Pipeline", "TestSupport",
       ]
     ),
+    // The command line: runs the executable.
     .testTarget(
-      name: "RayTracerTests",
+      name: "raytraceTests",
       dependencies: [
-        "Geometry", "SceneDescription", "Numerics", "PlatformSupport", "SceneIO",
-        "FastEngine", "Pipeline", "Measurement", "raytrace",
+        "raytrace", "Measurement", "Geometry", "SceneDescription", "Numerics",
+        "PlatformSupport", "SceneIO", "TestSupport",
       ]
     ),
   ]
