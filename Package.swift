@@ -236,6 +236,8 @@ let package = Package(
       dependencies: [
         "FastEngine", "Geometry", "SceneDescription", "Numerics", "SceneIO",
         "PlatformSupport", "TestSupport",
+        // The length scales' tests measure renders (`AccuracyRender`).
+        "Measurement",
       ]
     ),
     .testTarget(

@@ -1,9 +1,22 @@
-// Texts more than one test target reads: a camera line and two OBJ
-// meshes.
+// Texts more than one test target reads: a camera and a group in each
+// scene format, two OBJ meshes.
 package enum Fixtures {
   /// A camera at (0, 0, 10) looking down −z, as one line of a scene.
   package static let camera =
     "PerspectiveCamera { center 0 0 10 direction 0 0 -1 up 0 1 0 angle 30 }\n"
+
+  /// A unit sphere at the origin.
+  package static let sphere = "Sphere { center 0 0 0 radius 1 }"
+  /// A group of one unit sphere at the origin, as one line of a scene.
+  package static let group = "Group { numObjects 1 \(sphere) }\n"
+
+  /// The same camera as property-list keys.
+  package static let plistCamera = """
+    <key>Camera</key><dict><key>type</key><string>PerspectiveCamera</string>
+    <key>center</key><string>0 0 10</string>
+    <key>direction</key><string>0 0 -1</string>
+    <key>up</key><string>0 1 0</string><key>angle</key><string>30</string></dict>
+    """
 
   /// Without `vn` lines: smoothed normals, indexed by the vertices; a
   /// quad fanned into two triangles and a vertex no face uses.

@@ -45,12 +45,7 @@ final class PlistSceneReaderTests: XCTestCase {
       """).utf8)
   }
 
-  static let camera = """
-    <key>Camera</key><dict><key>type</key><string>PerspectiveCamera</string>
-    <key>center</key><string>0 0 10</string>
-    <key>direction</key><string>0 0 -1</string>
-    <key>up</key><string>0 1 0</string><key>angle</key><string>30</string></dict>
-    """
+  static let camera = Fixtures.plistCamera
 
   func read(_ body: String) throws(SceneError) -> Scene {
     try SceneReader.parse(bytes: plist(body), file: "\(folder)/s.plist")

@@ -12,8 +12,8 @@ final class SceneParserTests: XCTestCase {
   /// A one-line camera, so that the lines of each test text are easy to
   /// count: whatever follows it starts on line 2.
   static let camera = Fixtures.camera
-  static let sphere = "Sphere { center 0 0 0 radius 1 }"
-  static let group = "Group { numObjects 1 \(sphere) }\n"
+  static let sphere = Fixtures.sphere
+  static let group = Fixtures.group
 
   /// Every block, both light kinds (with and without falloff), both
   /// material spellings, nested groups and a non-unit plane normal.

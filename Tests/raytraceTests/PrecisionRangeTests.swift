@@ -8,11 +8,13 @@ import XCTest
 @testable import PlatformSupport
 import TestSupport
 
+@testable import raytrace
+
 /// Numbers a render's precision cannot hold are refused where they are
 /// written (`Precision.rangeProblem`), in both scene formats and in OBJ
 /// meshes, instead of drawing an empty or a full image.
 final class PrecisionRangeTests: XCTestCase {
-  static let camera = SceneParserTests.camera
+  static let camera = Fixtures.camera
 
   /// A scene whose second line is `Group { numObjects 1 <object> }`.
   static func scene(_ object: String) -> String {
@@ -102,7 +104,7 @@ final class PrecisionRangeTests: XCTestCase {
   func testRangeProblem_CameraField() {
     assertError(
       "PerspectiveCamera { center 0 0 1e39 direction 0 0 -1 up 0 1 0 "
-        + "angle 30 }\n" + SceneParserTests.group, .float, line: 1,
+        + "angle 30 }\n" + Fixtures.group, .float, line: 1,
       column: 32,
       "'1e39' is beyond the finite range of float (±3.4028235e+38); "
         + "use --precision double")
@@ -177,7 +179,7 @@ final class PrecisionRangeTests: XCTestCase {
 
   func testRangeProblem_PlistKeyPath() throws {
     let body =
-      PlistSceneReaderTests.camera
+      Fixtures.plistCamera
       + "<key>Group</key><array><dict><key>type</key><string>Sphere</string>"
       + "<key>center</key><string>0 0 0</string>"
       + "<key>radius</key><string>1e-45</string></dict></array>"
