@@ -164,7 +164,9 @@ final class TriangleAccuracyTests: XCTestCase {
         measured.worstOverBound, 1,
         "\(name) \(S.self): \(measured.worst) ulps", file: file, line: line)
       print(
-        "TriangleAccuracy \(name) \(S.self) threshold \(threshold): worst \(measured.worst) ulps, \(measured.worstOverBound) of the bound, \(measured.planes) planes"
+        "TriangleAccuracy \(name) \(S.self) threshold \(threshold): worst "
+          + "\(measured.worst) ulps, \(measured.worstOverBound) of the bound, "
+          + "\(measured.planes) planes"
       )
     }
   }
@@ -307,7 +309,8 @@ final class TriangleAccuracyTests: XCTestCase {
     XCTAssertGreaterThan(hits, count * 4)
     XCTAssertGreaterThan(planes, count / 10, "some take the exact plane")
     print(
-      "TriangleAccuracy random \(S.self): worst \(worst) ulps, \(worstOverBound) of the bound, \(planes) of \(count) planes"
+      "TriangleAccuracy random \(S.self): worst \(worst) ulps, "
+        + "\(worstOverBound) of the bound, \(planes) of \(count) planes"
     )
   }
 

@@ -42,7 +42,8 @@ final class LightTests: XCTestCase {
     assertRelativeError(
       arriving, colour.reference, ulps: 2, "\(T.self) 1/(0.04·25) = 1")
 
-    let far = Vector3<T>(1, 2, 13)  // distance 10: colour / (0.04·100) = colour / 4
+    // Distance 10: colour / (0.04·100) = colour / 4.
+    let far = Vector3<T>(1, 2, 13)
     let (_, dimmer) = attenuated.illumination(at: far, attenuate: true)
     assertRelativeError(
       dimmer, (colour / 4).reference, ulps: 2, "\(T.self) inverse square law")

@@ -143,7 +143,8 @@ final class CompensatedTests: XCTestCase {
       }
     }
     print(
-      "\(T.self) Dot2: largest condition \(largestCondition), plain worst \(plainWorst)"
+      "\(T.self) Dot2: largest condition \(largestCondition), plain worst "
+        + "\(plainWorst)"
     )
     // The test is only worth something if it reaches the ill-conditioned
     // cases where plain evaluation has no correct digit left.
@@ -161,7 +162,8 @@ final class CompensatedTests: XCTestCase {
     checkDot(Double.self, base: 0xD072_0002)
   }
 
-  /// Float inputs against the reference (Float80 on x86), as in a renderer's Float path: products
+  /// Float inputs against the reference (Float80 on x86), as in a renderer's
+  /// Float path: products
   /// of Floats are exact in Float80 and their sum is off by at most 2^−64
   /// of the largest partial sum, far below a Float ulp of the result for
   /// these condition numbers (≤ 1e9). Within the Dot2 bound.

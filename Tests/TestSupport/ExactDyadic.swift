@@ -97,7 +97,9 @@ package struct ExactDyadic: CustomStringConvertible {
       limbs: subtract(b, a), negative: y.negative, exponent: exponent)
   }
 
-  package static func - (x: ExactDyadic, y: ExactDyadic) -> ExactDyadic { x + -y }
+  package static func - (x: ExactDyadic, y: ExactDyadic) -> ExactDyadic {
+    x + -y
+  }
 
   /// |m|·2^bits as limbs.
   package func limbsShifted(by bits: Int) -> [UInt32] {
@@ -236,12 +238,14 @@ package struct ScaledDoubleDouble: CustomStringConvertible {
   }
 
   package static func * (x: Self, y: Self) -> Self {
-    Self(significand: x.significand * y.significand,
+    Self(
+      significand: x.significand * y.significand,
       exponent: x.exponent + y.exponent)
   }
 
   package static func / (x: Self, y: Self) -> Self {
-    Self(significand: x.significand / y.significand,
+    Self(
+      significand: x.significand / y.significand,
       exponent: x.exponent - y.exponent)
   }
 

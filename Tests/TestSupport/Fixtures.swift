@@ -15,7 +15,8 @@ package enum Fixtures {
     <key>Camera</key><dict><key>type</key><string>PerspectiveCamera</string>
     <key>center</key><string>0 0 10</string>
     <key>direction</key><string>0 0 -1</string>
-    <key>up</key><string>0 1 0</string><key>angle</key><string>30</string></dict>
+    <key>up</key><string>0 1 0</string><key>angle</key><string>30</string>\
+    </dict>
     """
 
   /// Without `vn` lines: smoothed normals, indexed by the vertices; a

@@ -35,7 +35,9 @@ extension RandomNumberGenerator {
 
   /// A direction uniform on the unit sphere (normalised Gaussian-free
   /// rejection sampling from the cube), rounded to T.
-  package mutating func unitVector<T: RayScalar>(_: T.Type = T.self) -> Vector3<T> {
+  package mutating func unitVector<T: RayScalar>(_: T.Type = T.self) -> Vector3<
+    T
+  > {
     while true {
       let v = Vector3<Double>(
         .random(in: -1...1, using: &self), .random(in: -1...1, using: &self),
@@ -79,7 +81,9 @@ extension XCTestCase {
 /// |got − want| / |want| in units of T.ulpOfOne, measured in
 /// ReferenceScalar (so a correctly rounded result scores at most 0.5).
 /// A zero `want` admits only a zero `got`; a non-finite `got` scores ∞.
-package func relativeErrorInUlps<T: RayScalar>(_ got: T, _ want: ReferenceScalar)
+package func relativeErrorInUlps<T: RayScalar>(
+  _ got: T, _ want: ReferenceScalar
+)
   -> Double
 {
   guard got.isFinite else { return .infinity }
@@ -136,7 +140,9 @@ package func vectorErrorInUlps<T: RayScalar>(
 
 extension Vector3 {
   /// The vector in ReferenceScalar, exactly (every Float and Double is one).
-  package var reference: Vector3<ReferenceScalar> { Vector3<ReferenceScalar>(self) }
+  package var reference: Vector3<ReferenceScalar> {
+    Vector3<ReferenceScalar>(self)
+  }
 }
 
 // MARK: - The project's files

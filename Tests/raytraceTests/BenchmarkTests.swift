@@ -13,7 +13,8 @@ import TestSupport
 final class BenchmarkTests: XCTestCase {
   let stats = """
     scene: /tmp/a b: c.txt: 6 spheres, 1 planes, 12 triangles, 2 transformed \
-    spheres; nearest sphere by culling per tile, nearest triangle by testing each
+    spheres; nearest sphere by culling per tile, nearest triangle by testing \
+    each
     size: 800x800, 640000 rays, precision double
     render: 0.01629 s, 39.3 Mrays/s
     write: 0.01626 s

@@ -46,7 +46,9 @@ extension CommandLineTests {
     XCTAssertTrue(
       missing.stderr.hasPrefix("raytrace: error: cannot read '"),
       missing.stderr)
-    let usage = try run(["compare", folder + "/a.ppm", folder + "/b.ppm", "--need", "120"])
+    let usage = try run([
+      "compare", folder + "/a.ppm", folder + "/b.ppm", "--need", "120",
+    ])
     XCTAssertEqual(usage.status, 64)
     let over = try run([
       "compare", folder + "/a.ppm", folder + "/b.ppm", "--diff",

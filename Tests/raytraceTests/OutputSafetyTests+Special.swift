@@ -21,7 +21,8 @@ extension OutputSafetyTests {
       "scenes/spheres.txt", "--size", "20", "20", "-o", fifo,
     ])
     XCTAssertEqual(refused.status, 1)
-    XCTAssertTrue(refused.stderr.contains("it is a FIFO with no reader"), refused.stderr)
+    XCTAssertTrue(
+      refused.stderr.contains("it is a FIFO with no reader"), refused.stderr)
     // The reader: this test, its end open before the run starts (a small
     // image fits in the pipe's buffer, read once the run has ended).
     let reader = open(fifo, O_RDONLY | O_NONBLOCK)
@@ -69,7 +70,8 @@ extension OutputSafetyTests {
     ])
     XCTAssertEqual(outcome.status, 1)
     XCTAssertTrue(
-      outcome.stderr.contains("its name is 304 bytes long, and the folder allows at most"),
+      outcome.stderr.contains(
+        "its name is 304 bytes long, and the folder allows at most"),
       outcome.stderr)
     XCTAssertLessThan(Date().timeIntervalSince(start), 5, "before the render")
     XCTAssertEqual(files(), [])
@@ -89,7 +91,8 @@ extension OutputSafetyTests {
     let before = try read("a/s.txt")
     let refused = try run(["report", scene, "--csv", scene])
     XCTAssertEqual(refused.status, 64)
-    XCTAssertTrue(refused.stderr.contains("would overwrite the scene file"), refused.stderr)
+    XCTAssertTrue(
+      refused.stderr.contains("would overwrite the scene file"), refused.stderr)
     XCTAssertEqual(try read("a/s.txt"), before)
     let both = try run([
       "report", scene, folder + "/b/s.txt", "--size", "8", "8", "--runs", "1",
@@ -106,8 +109,10 @@ extension OutputSafetyTests {
     let plotOver = try run(["report", scene, "--plot", scene])
     XCTAssertEqual(plotOver.status, 64)
     XCTAssertTrue(
-      plotOver.stderr.contains("--plot") && plotOver.stderr.contains(
-        "would overwrite the scene file"), plotOver.stderr)
+      plotOver.stderr.contains("--plot")
+        && plotOver.stderr.contains(
+          "would overwrite the scene file"),
+      plotOver.stderr)
     XCTAssertEqual(try read("a/s.txt"), before)
     // A device named as the CSV is written into, never replaced.
     let null = folder + "/null.csv"
@@ -125,12 +130,15 @@ extension OutputSafetyTests {
   /// A write to standard output that fails is an error, not exit 0.
   func testStandardOutputFull_IsAnError() throws {
     let outcome = try run(
-      ["report", "scenes/single-sphere.txt", "--size", "8", "8", "--runs", "1",
-       "--rounds", "1", "--skip-antialiasing"],
+      [
+        "report", "scenes/single-sphere.txt", "--size", "8", "8", "--runs", "1",
+        "--rounds", "1", "--skip-antialiasing",
+      ],
       shell: "exec >/dev/full;")
     XCTAssertEqual(outcome.status, 1)
     XCTAssertTrue(
-      outcome.stderr.contains("cannot write to standard output"), outcome.stderr)
+      outcome.stderr.contains("cannot write to standard output"), outcome.stderr
+    )
   }
 
   /// An image whose buffers cannot fit in what the process may use (here

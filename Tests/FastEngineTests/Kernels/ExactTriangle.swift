@@ -23,7 +23,9 @@ func exactTriangleT(
   func exact(_ v: Vector3<Double>) -> Exact3 {
     [ExactDyadic(v.x), ExactDyadic(v.y), ExactDyadic(v.z)]
   }
-  func minus(_ a: Exact3, _ b: Exact3) -> Exact3 { (0..<3).map { a[$0] - b[$0] } }
+  func minus(_ a: Exact3, _ b: Exact3) -> Exact3 {
+    (0..<3).map { a[$0] - b[$0] }
+  }
   func cross(_ a: Exact3, _ b: Exact3) -> Exact3 {
     [
       a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],

@@ -12,7 +12,8 @@ final class IntersectionKernelTests: XCTestCase {
   /// The flat searches keep what the stable test computed on its way to t
   /// (`SphereHitMemo`, the closest approach) and give it to the normal,
   /// which would otherwise compute the same values again. Over spheres
-  /// from a tenth of a radius (the eye inside) to 10⁸ radii away, each hit's normal from the memo must be the
+  /// from a tenth of a radius (the eye inside) to 10⁸ radii away, each hit's
+  /// normal from the memo must be the
   /// normal computed afresh, bit for bit, whichever form the test took;
   /// both forms must occur, so that the memo is exercised and its absence
   /// too.

@@ -72,7 +72,8 @@ final class WatertightErrorTests: XCTestCase {
       }
     }
     print(
-      "WatertightError \(S.self): kept worst \(kept) ulps·cos θ over \(count) rays; replaced worst \(replaced)"
+      "WatertightError \(S.self): kept worst \(kept) ulps·cos θ over \(count) "
+        + "rays; replaced worst \(replaced)"
     )
     XCTAssertGreaterThan(count, triangles / 3)
     XCTAssertLessThanOrEqual(kept, 5, "\(S.self)")

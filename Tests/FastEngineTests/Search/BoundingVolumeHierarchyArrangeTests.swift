@@ -94,7 +94,8 @@ final class BoundingVolumeHierarchyArrangeTests: XCTestCase {
           Swift.max(r.v0.x, r.v1.x, r.v2.x), Swift.max(r.v0.y, r.v1.y, r.v2.y),
           Swift.max(r.v0.z, r.v1.z, r.v2.z))
         let pad =
-          4 * Double.ulpOfOne * Swift.max(lower.maxMagnitude, upper.maxMagnitude)
+          4 * Double.ulpOfOne
+          * Swift.max(lower.maxMagnitude, upper.maxMagnitude)
         let padding = Vector3(pad, pad, pad)
         return (lower - padding, upper + padding)
       }

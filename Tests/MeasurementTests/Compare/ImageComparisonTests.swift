@@ -113,7 +113,8 @@ final class ImageComparisonTests: XCTestCase {
     }
     for a in [grey, symmetric] {
       let b = changed(a) { column, row, channel in
-        column == 5 && row == 6 ? 255 - a[column, row, channel]
+        column == 5 && row == 6
+          ? 255 - a[column, row, channel]
           : a[column, row, channel]
       }
       switch pattern(a, b) {
@@ -162,7 +163,8 @@ final class ImageComparisonTests: XCTestCase {
       (12...17).contains(column) && (10...14).contains(row)
         ? 255 - a[column, row, channel] : a[column, row, channel]
     }
-    XCTAssertEqual(pattern(a, patched), .region(columns: 12...17, rows: 10...14))
+    XCTAssertEqual(
+      pattern(a, patched), .region(columns: 12...17, rows: 10...14))
   }
 
   func testEverywhere_AndTheLargestDifference() {
@@ -215,7 +217,8 @@ final class ImageComparisonTests: XCTestCase {
   func testDifferenceImage() {
     let a = Self.normals()
     let b = changed(a) { column, row, channel in
-      column == 5 && row == 6 ? 255 - a[column, row, channel] : a[column, row, channel]
+      column == 5 && row == 6
+        ? 255 - a[column, row, channel] : a[column, row, channel]
     }
     let comparison = ImageComparison(a, b, tolerance: 2)
     let image = comparison.differenceImage(a, b)

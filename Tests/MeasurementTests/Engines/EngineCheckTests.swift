@@ -43,7 +43,11 @@ final class EngineCheckTests: XCTestCase {
     ) { column, row in
       let (ray, hits) = CourseEngine.probe(
         scene, settings: settings, column: column, row: row)
-      return (ray, hits.compactMap { found in mistake(found.hit).map { (found.index, $0) } })
+      return (
+        ray,
+        hits.compactMap { found in mistake(found.hit).map { (found.index, $0) }
+        }
+      )
     }
   }
 

@@ -5,7 +5,6 @@ import Geometry
 import SceneDescription
 import XCTest
 
-
 /// A shape of the test's own, defined in one place (docs/ADDING-A-SHAPE.md),
 /// renders in both engines: the course engine asks it directly, the fast
 /// engine through the same protocol behind its box.
@@ -49,7 +48,8 @@ final class ShapeOfYourOwnTests: XCTestCase {
     return Scene(
       camera: camera,
       materials: [
-        Material(diffuse: Vector3(1, 1, 1)), Material(diffuse: Vector3(1, 0, 0)),
+        Material(diffuse: Vector3(1, 1, 1)),
+        Material(diffuse: Vector3(1, 0, 0)),
       ],
       root: SceneDescription.Group([
         .sphere(SceneDescription.Sphere(center: Vector3(1, 0, 2), radius: 1)),
@@ -83,7 +83,9 @@ final class ShapeOfYourOwnTests: XCTestCase {
     guard let c = values["center"], let n = values["normal"],
       let r = values["radius"]?.first
     else { return .failure(ShapeError("a field is missing")) }
-    guard r > 0 else { return .failure(ShapeError("'radius' must be positive")) }
+    guard r > 0 else {
+      return .failure(ShapeError("'radius' must be positive"))
+    }
     return .success(
       Disc(
         center: Vector3(c[0], c[1], c[2]),
@@ -137,7 +139,8 @@ final class ShapeOfYourOwnTests: XCTestCase {
   /// Both formats read the disc by its name, and both engines draw it.
   func testDisc_ReadByBothFormats() throws {
     let options = SceneOptions(style: .course, shapes: [Self.discKind])
-    for (name, source) in [("disc.txt", Self.text), ("disc.plist", Self.plist)] {
+    for (name, source) in [("disc.txt", Self.text), ("disc.plist", Self.plist)]
+    {
       let scene = try SceneReader.parse(
         bytes: Array(source.utf8), file: name, options: options)
       let both = BothEngines(scene, width: 48, height: 36, style: .course)
@@ -204,7 +207,8 @@ final class ShapeOfYourOwnTests: XCTestCase {
     XCTAssertEqual(
       refused, "d.txt:12:3: error: Disc: 'radius' must be positive")
     let twice = message(
-      Self.text.replacingOccurrences(of: "radius 2.5", with: "radius 1 radius 2"))
+      Self.text.replacingOccurrences(
+        of: "radius 2.5", with: "radius 1 radius 2"))
     XCTAssertTrue(twice.contains("'radius' is given twice in Disc"), twice)
   }
 }

@@ -50,7 +50,8 @@ final class ErrorPlotTests: XCTestCase {
     // a value by a factor 10^(0.005 · decades / pixels) of the axis
     // (`resolution`), with 1e-12 for the arithmetic of the mapping.
     func tolerance(_ axis: LogAxis) -> Double {
-      let decadesPerPixel = (axis.highest - axis.lowest)
+      let decadesPerPixel =
+        (axis.highest - axis.lowest)
         / (axis.end - axis.start).magnitude
       return Foundation.pow(10, 0.005 * decadesPerPixel) - 1 + 1e-12
     }
@@ -163,7 +164,8 @@ struct PlottedPanel {
         let y = attributes["data-y-axis"].flatMap(LogAxis.init(attribute:))
       else { return nil }
       return PlottedPanel(
-        name: name, x: x, y: y, zeroY: attributes["data-zero-y"].flatMap {
+        name: name, x: x, y: y,
+        zeroY: attributes["data-zero-y"].flatMap {
           Double($0)
         })
     }
@@ -180,8 +182,10 @@ private func elements(in svg: String, opening: String) -> [[String: String]] {
       let pair = part.split(separator: "=", maxSplits: 1)
       guard pair.count == 2 else { continue }
       let name = pair[0].trimmingCharacters(in: .whitespaces)
-      let value = pair[1].trimmingCharacters(in: CharacterSet(charactersIn: "\""))
-      attributes[name] = value
+      let value = pair[1].trimmingCharacters(
+        in: CharacterSet(charactersIn: "\""))
+      attributes[name] =
+        value
         .replacingOccurrences(of: "&quot;", with: "\"")
         .replacingOccurrences(of: "&apos;", with: "'")
         .replacingOccurrences(of: "&lt;", with: "<")

@@ -79,7 +79,8 @@ final class ImageFileReaderTests: XCTestCase {
     // Replace the IHDR's data and its CRC (bytes 16..<29, then 29..<33).
     png.replaceSubrange(16..<29, with: header)
     let crc = PNGEncoder.crc32(Array("IHDR".utf8) + header)
-    png.replaceSubrange(29..<33, with: withUnsafeBytes(of: crc.bigEndian, Array.init))
+    png.replaceSubrange(
+      29..<33, with: withUnsafeBytes(of: crc.bigEndian, Array.init))
     XCTAssertEqual(
       reason(png),
       "not a PNG file it can read: its size 4294967295×4294967295 is beyond "

@@ -27,7 +27,8 @@ final class MeshLoaderTests: XCTestCase {
         MaterialIndex 1 TriangleMesh { obj_file m.obj }
         Transform { Translate 1 0 0 TriangleMesh { obj_file m.obj } } }
       """
-    try scene.write(toFile: folder + "/s.txt", atomically: true, encoding: .utf8)
+    try scene.write(
+      toFile: folder + "/s.txt", atomically: true, encoding: .utf8)
     let read = try SceneReader.read(
       contentsOf: folder + "/s.txt", options: SceneOptions(style: .course))
     var meshes: [TriangleMesh<Double>] = []
@@ -41,7 +42,9 @@ final class MeshLoaderTests: XCTestCase {
     }
     XCTAssertEqual(meshes.count, 3)
     XCTAssertEqual(meshes.map(\.materialIndex), [0, 1, 1])
-    let addresses = meshes.map { $0.vertices.withUnsafeBufferPointer { $0.baseAddress } }
+    let addresses = meshes.map {
+      $0.vertices.withUnsafeBufferPointer { $0.baseAddress }
+    }
     XCTAssertEqual(Set(addresses).count, 1, "one array of vertices for all")
     XCTAssertEqual(Set(meshes.map(\.storage.identity)).count, 1)
   }
@@ -61,7 +64,8 @@ final class MeshLoaderTests: XCTestCase {
       PerspectiveCamera { center 0 0 5 direction 0 0 -1 up 0 1 0 angle 30 }
       Group { numObjects 1 TriangleMesh { obj_file big.obj } }
       """
-    try scene.write(toFile: folder + "/s.txt", atomically: true, encoding: .utf8)
+    try scene.write(
+      toFile: folder + "/s.txt", atomically: true, encoding: .utf8)
     let start = Date()
     XCTAssertThrowsError(
       try SceneReader.read(
@@ -69,7 +73,10 @@ final class MeshLoaderTests: XCTestCase {
     ) { error in
       let message = (error as? SceneError)?.message ?? ""
       XCTAssertTrue(
-        message.contains("big.obj' would need about 600.0 GiB once read, and the process may use at most"),
+        message.contains(
+          "big.obj' would need about 600.0 GiB once read, and the process may "
+            + "use at most"
+        ),
         message)
     }
     XCTAssertLessThan(Date().timeIntervalSince(start), 1)

@@ -96,7 +96,8 @@ final class PlistHostileTests: XCTestCase {
     // not count either way.
     let fine = """
       <?xml version="1.0"?>
-      <!DOCTYPE plist PUBLIC "-//Apple//DTD PLIST 1.0//EN" "http://www.apple.com/DTDs/PropertyList-1.0.dtd">
+      <!DOCTYPE plist PUBLIC "-//Apple//DTD PLIST 1.0//EN" \
+      "http://www.apple.com/DTDs/PropertyList-1.0.dtd">
       <?target <array><array>?>
       <plist><!-- </dict> <array> --><dict>
       <key>Group</key><array/></dict></plist>
@@ -135,8 +136,8 @@ final class PlistHostileTests: XCTestCase {
     func value(_ element: String) -> String {
       message(
         Array(
-          "<?xml version=\"1.0\"?>\n<plist><dict>\n<key>Group</key>\(element)</dict></plist>"
-            .utf8))
+          ("<?xml version=\"1.0\"?>\n<plist><dict>\n<key>Group</key>"
+            + "\(element)</dict></plist>").utf8))
     }
     XCTAssertEqual(
       value("<integer>99999999999999999999999</integer>"),
@@ -162,9 +163,11 @@ final class PlistHostileTests: XCTestCase {
       <key>Camera</key><dict><key>type</key><string>PerspectiveCamera</string>
       <key>center</key><string>0 0 10</string>
       <key>direction</key><string>0 0 -1</string>
-      <key>up</key><string>0 1 0</string><key>angle</key><string>30</string></dict>
+      <key>up</key><string>0 1 0</string><key>angle</key><string>30</string>\
+      </dict>
       <key>Group</key><array><dict><key>type</key><string>Sphere</string>
-      <key>center</key><string>0 0 0</string><key>radius</key><string>2</string></dict></array>
+      <key>center</key><string>0 0 0</string><key>radius</key>\
+      <string>2</string></dict></array>
       </dict></plist>
       """
     let utf8 = try SceneReader.parse(

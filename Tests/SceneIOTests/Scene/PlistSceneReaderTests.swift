@@ -86,9 +86,11 @@ final class PlistSceneReaderTests: XCTestCase {
         <key>Group</key><array>
           <dict><key>type</key><string>Sphere</string>
             <key>materialIndex</key><string>1</string>
-            <key>center</key><string>0 0 0</string><key>radius</key><real>1.5</real></dict>
+            <key>center</key><string>0 0 0</string><key>radius</key>\
+            <real>1.5</real></dict>
           <dict><key>type</key><string>Plane</string>
-            <key>normal</key><string>0 1 0</string><key>offset</key><string>2</string></dict>
+            <key>normal</key><string>0 1 0</string><key>offset</key>\
+            <string>2</string></dict>
           <dict><key>type</key><string>Triangle</string>
             <key>materialIndex</key><string>1</string>
             <key>vertex0</key><string>0 0 0</string>
@@ -168,8 +170,10 @@ final class PlistSceneReaderTests: XCTestCase {
       .write(to: URL(fileURLWithPath: "\(folder)/Textures/wood.bmp"))
     let scene = try read(
       Self.camera + """
-        <key>Materials</key><array><dict><key>texture</key><string>wood</string></dict></array>
-        <key>Group</key><array><dict><key>type</key><string>TriangleMesh</string>
+        <key>Materials</key><array><dict><key>texture</key>\
+        <string>wood</string></dict></array>
+        <key>Group</key><array><dict><key>type</key>\
+        <string>TriangleMesh</string>
           <key>objFile</key><string>tri</string></dict></array>
         """)
     XCTAssertEqual(
@@ -177,13 +181,15 @@ final class PlistSceneReaderTests: XCTestCase {
     XCTAssertEqual(scene.root.flattened().triangles.count, 1)
     assertError(
       Self.camera
-        + "<key>Group</key><array><dict><key>type</key><string>TriangleMesh</string>"
+        + "<key>Group</key><array><dict><key>type</key>"
+        + "<string>TriangleMesh</string>"
         + "<key>objFile</key><string>gone</string></dict></array>",
       "Group[0].objFile: no file for \"gone\"; tried "
         + "'\(folder)/Meshes/gone.obj', '\(folder)/gone.obj'")
     assertError(
       Self.camera
-        + "<key>Materials</key><array><dict><key>texture</key><string>gone</string>"
+        + "<key>Materials</key><array><dict><key>texture</key>"
+        + "<string>gone</string>"
         + "</dict></array><key>Group</key><array/>",
       "Materials[0].texture: no file for \"gone\"; tried "
         + "'\(folder)/Textures/gone.bmp', '\(folder)/gone.bmp'")
@@ -196,12 +202,15 @@ final class PlistSceneReaderTests: XCTestCase {
       .write(to: URL(fileURLWithPath: "\(folder)/Textures/wood.bmp"))
     assertError(
       Self.camera + """
-        <key>Materials</key><array><dict><key>texture</key><string>wood</string></dict></array>
-        <key>Group</key><array><dict><key>type</key><string>TriangleMesh</string>
+        <key>Materials</key><array><dict><key>texture</key>\
+        <string>wood</string></dict></array>
+        <key>Group</key><array><dict><key>type</key>\
+        <string>TriangleMesh</string>
           <key>objFile</key><string>plain</string></dict></array>
         """,
       "Group[0].objFile: material 0 has a texture, but the mesh "
-        + "'\(folder)/Meshes/plain.obj' has no texture coordinates (no face gives vt)"
+        + "'\(folder)/Meshes/plain.obj' has no texture coordinates (no face "
+        + "gives vt)"
     )
   }
 
@@ -232,7 +241,8 @@ final class PlistSceneReaderTests: XCTestCase {
         + "Triangle, TriangleMesh, Group, Transform; did you mean 'Sphere'?")
     assertError(
       Self.camera
-        + "<key>Group</key><array><dict><key>type</key><string>Transform</string>"
+        + "<key>Group</key><array><dict><key>type</key>"
+        + "<string>Transform</string>"
         + "<key>transforms</key><array><string>translat 1 2 3</string></array>"
         + "<key>transformed</key><dict/></dict></array>",
       "Group[0].transforms[0]: unknown transform \"translat\"; expected one "
@@ -240,7 +250,8 @@ final class PlistSceneReaderTests: XCTestCase {
         + "rotate; did you mean 'translate'?")
     assertError(
       Self.camera
-        + "<key>Group</key><array><dict><key>type</key><string>Transform</string>"
+        + "<key>Group</key><array><dict><key>type</key>"
+        + "<string>Transform</string>"
         + "<key>transforms</key><array><string>rotate 0 0 0 30</string></array>"
         + "<key>transformed</key><dict/></dict></array>",
       "Group[0].transforms[0]: 'rotate' needs a non-zero axis")
@@ -262,7 +273,8 @@ final class PlistSceneReaderTests: XCTestCase {
       "Group: expected an array, found a dictionary")
     assertError(
       Self.camera
-        + "<key>Background</key><dict><key>color</key><string>1e999 0 0</string>"
+        + "<key>Background</key><dict><key>color</key><string>1e999 0 "
+        + "0</string>"
         + "</dict><key>Group</key><array/>",
       "Background.color: '1e999' is beyond the finite range of double "
         + "(±1.7976931348623157e+308)"
@@ -274,7 +286,8 @@ final class PlistSceneReaderTests: XCTestCase {
   func testErrors_Nesting() {
     var object =
       "<dict><key>type</key><string>Sphere</string>"
-      + "<key>center</key><string>0 0 0</string><key>radius</key><string>1</string></dict>"
+      + "<key>center</key><string>0 0 0</string><key>radius</key>"
+      + "<string>1</string></dict>"
     for _ in 0..<SceneParser.maximumGroupDepth {
       object =
         "<dict><key>type</key><string>Group</string><key>Group</key><array>"
@@ -328,8 +341,8 @@ final class PlistSceneReaderTests: XCTestCase {
     XCTAssertThrowsError(
       try SceneReader.parse(
         bytes: Array(
-          "<?xml version=\"1.0\"?>\n<plist>\n<dict>\n<key>a</key>\n<strin>x</string>\n"
-            .utf8),
+          ("<?xml version=\"1.0\"?>\n<plist>\n<dict>\n<key>a</key>\n"
+            + "<strin>x</string>\n").utf8),
         file: "bad.plist")
     ) { error in
       let description = (error as? SceneError)?.description ?? ""
@@ -347,7 +360,8 @@ final class PlistSceneReaderTests: XCTestCase {
     let xml = plist(
       Self.camera
         + "<key>Group</key><array><dict><key>type</key><string>Sphere</string>"
-        + "<key>center</key><string>0 0 0</string><key>radius</key><string>1</string></dict></array>"
+        + "<key>center</key><string>0 0 0</string><key>radius</key>"
+        + "<string>1</string></dict></array>"
     )
     let tree = try PropertyListSerialization.propertyList(
       from: Data(xml), format: nil)

@@ -1,17 +1,11 @@
-@testable import FastEngine
-@testable import Geometry
-@testable import SceneDescription
-@testable import Numerics
-@testable import SceneIO
-@testable import PlatformSupport
-import TestSupport
+import Numerics
 
 // The tests' exact reference for whole powers (specular highlights):
 // not in Numerics, where no render asks a double-double for one.
 extension DoubleDouble {
   /// xⁿ by repeated squaring, each product ≤ 5u²: relative error ≤
   /// 5u²·(2·log₂|n| + 1) roughly, plus one division for negative n. x⁰ = 1.
-  static func pow(_ x: DoubleDouble, _ n: Int) -> DoubleDouble {
+  package static func pow(_ x: DoubleDouble, _ n: Int) -> DoubleDouble {
     if n == 0 { return 1 }
     var base = x
     var remaining = n.magnitude
