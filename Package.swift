@@ -206,24 +206,64 @@ let package = Package(
         "FastEngine", "Pipeline", "Measurement", argumentParser,
       ]
     ),
+    // Helpers more than one test target uses (seeded random numbers,
+    // errors in ulps, exact references, the project's files): a library
+    // target, as swift-argument-parser's ArgumentParserTestHelpers is.
+    .target(
+      name: "TestSupport", dependencies: ["Geometry", "ExactArithmetic"],
+      path: "Tests/TestSupport"
+    ),
+    // One test target per source target, each depending on what it
+    // imports; only raytraceTests on the executable.
+    .testTarget(
+      name: "GeometryTests",
+      dependencies: ["Geometry", "ExactArithmetic", "TestSupport"]
+    ),
+    .testTarget(
+      name: "ExactArithmeticTests",
+      dependencies: ["ExactArithmetic", "Geometry", "TestSupport"]
+    ),
+    .testTarget(
+      name: "SceneIOTests",
+      dependencies: [
+        "SceneIO", "Geometry", "SceneDescription", "ExactArithmetic",
+        "PlatformSupport", "CZlib", "TestSupport",
+      ]
+    ),
+    .testTarget(
+      name: "FastEngineTests",
+      dependencies: [
+        "FastEngine", "Geometry", "SceneDescription", "ExactArithmetic", "SceneIO",
+        "PlatformSupport", "TestSupport",
+        // The length scales' tests measure renders (`AccuracyRender`) and
+        // the limits the pipeline words (`CourseEngineLimits`).
+        "Measurement", "Pipeline",
+      ]
+    ),
+    .testTarget(
+      name: "PipelineTests",
+      dependencies: ["Pipeline", "Geometry", "SceneIO", "TestSupport"]
+    ),
     // The course's own tests: the course's closure only.
     .testTarget(
       name: "CourseTests",
       dependencies: ["Course", "Geometry", "SceneDescription"]
     ),
-    // The two engines side by side: their agreement and `--check`.
+    // `raytrace report`, `bench`, `compare`, and the two engines side by
+    // side: their agreement and `--check`.
     .testTarget(
-      name: "EngineTests",
+      name: "MeasurementTests",
       dependencies: [
-        "Course", "Geometry", "SceneDescription", "ExactArithmetic", "SceneIO",
-        "FastEngine", "Pipeline", "Measurement",
+        "Measurement", "Course", "Geometry", "SceneDescription", "ExactArithmetic",
+        "PlatformSupport", "SceneIO", "FastEngine", "Pipeline", "TestSupport",
       ]
     ),
+    // The command line: runs the executable.
     .testTarget(
-      name: "RayTracerTests",
+      name: "raytraceTests",
       dependencies: [
-        "Geometry", "SceneDescription", "ExactArithmetic", "PlatformSupport", "SceneIO",
-        "FastEngine", "Pipeline", "Measurement", "raytrace",
+        "raytrace", "Measurement", "Geometry", "SceneDescription", "ExactArithmetic",
+        "PlatformSupport", "SceneIO", "TestSupport",
       ]
     ),
   ]
