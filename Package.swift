@@ -202,7 +202,7 @@ let package = Package(
     .executableTarget(
       name: "raytrace",
       dependencies: [
-        "Geometry", "SceneDescription", "ExactArithmetic", "PlatformSupport", "SceneIO",
+        "Course", "Geometry", "SceneDescription", "ExactArithmetic", "PlatformSupport", "SceneIO",
         "FastEngine", "Pipeline", "Measurement", argumentParser,
       ]
     ),
@@ -228,6 +228,8 @@ let package = Package(
       dependencies: [
         "SceneIO", "Geometry", "SceneDescription", "ExactArithmetic",
         "PlatformSupport", "CZlib", "TestSupport",
+        // Hostile scenes are checked as a render places them (`flattened`).
+        "FastEngine",
       ]
     ),
     .testTarget(

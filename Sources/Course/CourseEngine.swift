@@ -7,7 +7,7 @@ import SceneDescription
 ///
 /// It computes in Double with the scene's own lengths. Scenes of extreme
 /// range (specks 10⁸ radii away, planets seen from one unit above) are the
-/// fast engine's job (`--engine fast`, docs/ENGINES.md).
+/// other engine's job (docs/ENGINES.md).
 public enum CourseEngine {
   /// Renders `scene` into the buffers `settings.outputs` asks for, rows
   /// spread over `settings.threads` (the image does not depend on them).

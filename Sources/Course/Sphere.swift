@@ -27,7 +27,7 @@ public struct Sphere: Hittable {
   /// A tangent ray hits at its double root; a ray from inside hits the far
   /// side. The normal is outward and unit length. Scenes of extreme range
   /// (a camera one unit above a planet, a speck 10⁸ radii away) are the
-  /// fast engine's job: c below still cancels there.
+  /// other engine's job (docs/ENGINES.md): c below still cancels there.
   public func intersect(
     _ ray: Ray<Double>, after tMin: Double, before tMax: Double
   ) -> Hit<Double>? {

@@ -3,9 +3,9 @@ import SceneDescription
 
 /// The ellipsoids' search: one by one, or through a hierarchy of their
 /// own when there are many, left where they are in `ellipsoids` and reached
-/// through its `order`. Tested one by one, 2,000 of them made the fast
-/// engine 7 times slower than the course engine (docs/PERFORMANCE.md,
-/// "Ellipsoids in a hierarchy").
+/// through its `order`. Tested one by one, 2,000 of them made this engine
+/// 7 times slower than a loop over every object (docs/PERFORMANCE.md,
+/// "Hierarchies").
 extension CompiledScene {
   /// Ellipsoids from which they are searched through their hierarchy.
   static var ellipsoidHierarchyThreshold: Int { 8 }

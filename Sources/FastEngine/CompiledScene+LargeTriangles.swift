@@ -29,8 +29,8 @@ extension CompiledScene {
   /// through a hierarchy of their own rather than one by one. Above a few,
   /// they are as many as a mesh has triangles whose planes pass near the
   /// eye: 661 of the 10⁶-triangle mesh, each tested with an exact plane,
-  /// made a ray take 7.8 µs (docs/PERFORMANCE.md, "Large triangles in a
-  /// hierarchy").
+  /// made a ray take 7.8 µs (docs/PERFORMANCE.md,
+  /// "Hierarchies").
   static var largeTriangleHierarchyThreshold: Int { 8 }
 
   /// Builds the large triangles' hierarchy when they are many, leaving

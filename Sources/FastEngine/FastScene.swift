@@ -4,8 +4,8 @@ import SceneDescription
 import PlatformSupport
 
 /// The fast engine behind one type that is not generic: a scene compiled
-/// for the options' precision and method, and its renders. The other
-/// targets (the pipeline, the report) hold this, so that every generic
+/// for the options' precision and method, and its renders. The targets
+/// above hold this, so that every generic
 /// function of the engine is specialised here, in its own module, for the
 /// four kernels: called from another module, a generic function of this
 /// one runs unspecialised (a render 100 times slower).

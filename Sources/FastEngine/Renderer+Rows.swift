@@ -1,6 +1,6 @@
 import Geometry
 
-/// The fast engine's rows, handed out as the course engine's are
+/// The fast engine's rows, handed out in batches to the render's threads
 /// (`RowBatches`).
 extension Renderer {
   static var rowsPerBatch: Int { RowBatches.rowsPerBatch }

@@ -221,15 +221,12 @@ extension Renderer {
       return position >= 0 ? entries[entries.startIndex + position] : nil
     }
     guard scene.projectsTriangles else {
-      // Spheres and planes only (no shapes of one's own either, which
-      // `testEllipsoids` asks): the planes tested here, not through
+      // Spheres and planes only: the planes tested here, not through
       // `scene.nearest`, whose copy of each ray for the searches after
       // them made the course scene's render 1.3 times slower, and the
-      // spheres' rows 1.15 times (docs/PERFORMANCE.md, "The sphere rows
-      // since 2026-11-26").
-      if scene.triangles.isEmpty && scene.ellipsoids.isEmpty
-        && scene.shapes.isEmpty
-      {
+      // spheres' rows 1.15 times (docs/PERFORMANCE.md, "The sphere
+      // rows").
+      if scene.holdsOnly([.sphere, .plane]) {
         for row in 0..<rows {
           for column in 0..<columns {
             let slot = row * tileWidth + column

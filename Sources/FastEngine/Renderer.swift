@@ -21,8 +21,6 @@ package enum Renderer {
   /// How a render found each pixel's nearest sphere.
   package enum SphereSearch: Sendable, Equatable, CustomStringConvertible {
     case everySphere, culledPerTile, hierarchy, screenTiles
-    /// The course engine: every object of the group by the hit protocol.
-    case everyObject
 
     /// In words, for a render's report.
     package var description: String {
@@ -31,7 +29,6 @@ package enum Renderer {
       case .culledPerTile: "culling per tile"
       case .hierarchy: "BVH"
       case .screenTiles: "screen tiles"
-      case .everyObject: "the course engine, every object"
       }
     }
   }

@@ -4,7 +4,7 @@ import PlatformSupport
 /// What one compiled scene's renders keep for the next (`FastScene` holds
 /// one): the hierarchies, which do not depend on the view, built the first
 /// time a render needs them and never again; and the screen tiles of the
-/// last view, which a render of the same view (`--repeat`, as a program
+/// last view, which a render of the same view (repeated, as a program
 /// that redraws its window) reuses rather than boxing and sorting every
 /// primitive again. The peer's warm render likewise traverses a hierarchy
 /// built while loading the scene.

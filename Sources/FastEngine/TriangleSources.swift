@@ -8,7 +8,7 @@ import PlatformSupport
 ///
 /// A material and three normal indices per triangle, 16 bytes, had been
 /// 76 MiB of a 5·10⁶-triangle render's 796 MiB peak (docs/PERFORMANCE.md,
-/// "Memory and parallel reading"); they are read once per pixel, not per
+/// "Large meshes"); they are read once per pixel, not per
 /// test. Here a triangle costs 4 bytes, its face's number, and nothing
 /// while every compiled triangle is the face of the same number (no
 /// degenerate face left out, no large one moved after the others, no

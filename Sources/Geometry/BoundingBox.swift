@@ -1,5 +1,5 @@
 /// An axis-aligned box, in Double: the bound the course's mesh hierarchy
-/// and the fast engine's test of other shapes check before a shape.
+/// and the compiled engine's test of other shapes check before a shape.
 public struct BoundingBox: Hashable, Sendable {
   public var lower: Vector3<Double>
   public var upper: Vector3<Double>

@@ -4,7 +4,7 @@
 /// The course's shapes conform to it (`Sources/Course`), and the course
 /// engine renders by asking every object of the scene for its nearest hit.
 /// A shape of your own that conforms to it renders in both engines: the
-/// fast engine tests any object it does not specialise through this
+/// compiled engine tests any object it does not specialise through this
 /// protocol, behind the object's `boundingBox` (docs/ADDING-A-SHAPE.md).
 ///
 /// Rays and hits are in Double, the precision of the scene as read.
@@ -21,7 +21,7 @@ public protocol Hittable: Sendable {
   var boundingBox: BoundingBox? { get }
 }
 
-/// An object of a kind that neither reader nor fast engine specialises,
+/// An object of a kind that neither reader nor compiled engine specialises,
 /// held in a scene by its hit protocol (`SceneObject.shape`).
 ///
 /// Two are equal when they are the same object: a `Hittable` need not be

@@ -1,7 +1,7 @@
 import Geometry
 
 /// How raw depth, normals and colour become 8-bit values in each style, a
-/// value at a time: what the fast engine stores for an 8-bit output
+/// value at a time: what a render stores for an 8-bit output
 /// (`RenderSettings.quantizedOutputs`) and the writers encode
 /// (`ImageConventions` in SceneIO, for whole images).
 extension ImageStyle {
@@ -11,8 +11,8 @@ extension ImageStyle {
 
   /// The depth range an image uses: the given one, or the course's choice
   /// from the image (nearest hit to farthest hit closer than the cutoff; in
-  /// the mit style, which normally takes a range from the command line, the
-  /// nearest to the farthest hit). Nil when nothing qualifies.
+  /// the mit style, which is normally given a range, the nearest to the
+  /// farthest hit). Nil when nothing qualifies.
   @usableFromInline
   package func depthRange<S: RayScalar>(
     _ depth: [S], given: ClosedRange<Double>?

@@ -59,7 +59,7 @@ public struct Material<Scalar: RayScalar>: Hashable, Sendable {
     ///   - normal: unit normal at the hit.
     ///   - viewDirection: the unit ray direction d (towards the hit).
     ///   - power: highlight^shininess; the course's is the C library's
-    ///     `pow`, the fast engine's `Numerics.specularPower`.
+    ///     `pow`, the compiled engine's `specularPower`.
     @inlinable
     @_specialize(where Scalar == Double)
     public func shade(

@@ -5,7 +5,7 @@ import RealModule
 /// Renders run in `Float` or `Double`; the reference that errors are
 /// measured against is `Float80` where the platform has it (x86) and
 /// `DoubleDouble` elsewhere (Apple Silicon), both more precise than Double.
-/// The choice is made once per render (the fast engine's `Precision`), so
+/// The choice is made once per render (a render's precision), so
 /// every generic function is specialised for the concrete type rather than
 /// dispatched through witness tables.
 ///

@@ -38,7 +38,7 @@ extension RenderBuffers {
   /// index i being pixel (i mod width, i div width); a buffer not asked
   /// for is empty, and nothing is stored in it.
   /// Inlined `store` (the type `@usableFromInline` for it): as a generic it
-  /// took a runtime lock per pixel (docs/PERFORMANCE.md, "A lock per pixel").
+  /// took a runtime lock per pixel (docs/PERFORMANCE.md, "Many cores").
   @usableFromInline
   package struct Pixels: @unchecked Sendable {
     @usableFromInline let depth: UnsafeMutableBufferPointer<Scalar>

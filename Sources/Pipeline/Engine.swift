@@ -5,12 +5,18 @@ import FastEngine
 /// (docs/ENGINES.md).
 package enum Engine: String, CaseIterable, Sendable {
   /// `CourseEngine` (the course target): the course's loop over every
-  /// object by the hit protocol, in Double. The default: the code a
-  /// student reads and edits.
+  /// object by the hit protocol, in Double. The default (`Engine.default`):
+  /// the code a student reads and edits.
   case course
   /// `Renderer`: the scene compiled into flat records for one precision,
   /// searched through screen tiles or a hierarchy; exact at any scale.
   case fast
+}
+
+extension Engine {
+  /// The engine a render uses when none is named and no option asks for
+  /// the fast engine's own choices: the one place it is set.
+  package static let `default` = Engine.course
 }
 
 /// A render as the command line asks for it: the image, the engine that
@@ -28,7 +34,7 @@ package struct RenderRequest: Sendable {
   package var repeats = 0
 
   package init(
-    _ settings: RenderSettings, engine: Engine = .fast,
+    _ settings: RenderSettings, engine: Engine = .default,
     fast: FastOptions = FastOptions()
   ) {
     self.settings = settings

@@ -28,8 +28,9 @@ package struct RenderReport: Sendable {
   package var settings: RenderSettings { request.settings }
   package var spheres: Int
   package var planes: Int
-  /// How each pixel's nearest sphere was found.
-  package var sphereSearch: Renderer.SphereSearch
+  /// How each pixel's nearest sphere was found; nil for the course
+  /// engine, which tries every object of the group by the hit protocol.
+  package var sphereSearch: Renderer.SphereSearch?
   package var usesHierarchy: Bool { sphereSearch == .hierarchy }
   package var triangles: Int = 0
   package var ellipsoids: Int = 0
@@ -223,11 +224,11 @@ package enum RenderJob {
         CourseEngine.render(
           scene, textures: textures, settings: output.settings,
           progress: progress),
-        .everyObject, .everyTriangle
+        nil, .everyTriangle
       )
     }
     var report = try write(
-      rendered.result.buffers, output, clock: &clock, search: .everyObject,
+      rendered.result.buffers, output, clock: &clock, search: nil,
       seconds: rendered.seconds, compileSeconds: 0)
     let all = scene.root.flattened()
     report.spheres = all.spheres.count
@@ -264,7 +265,7 @@ package enum RenderJob {
   }
 
   private typealias Rendered<Buffers> = (
-    buffers: Buffers, search: Renderer.SphereSearch,
+    buffers: Buffers, search: Renderer.SphereSearch?,
     triangleSearch: Renderer.TriangleSearch
   )
 
@@ -280,14 +281,14 @@ package enum RenderJob {
       batch: try OutputBatch(paths: files.map(\.path)))
     var clock = Stopwatch()
     _ = try write(
-      buffers, output, clock: &clock, search: .everyObject,
+      buffers, output, clock: &clock, search: nil,
       seconds: (0, 0), compileSeconds: 0)
   }
 
   /// Encodes and writes every file from `buffers`, and reports.
   private static func write<S: RayScalar>(
     _ buffers: RenderBuffers<S>, _ output: Output, clock: inout Stopwatch,
-    search: Renderer.SphereSearch, seconds: (first: Double, median: Double),
+    search: Renderer.SphereSearch?, seconds: (first: Double, median: Double),
     compileSeconds: Double
   ) throws -> RenderReport {
     let (settings, files) = (output.settings, output.files)

@@ -43,8 +43,8 @@ extension Platform {
   /// hundred KiB, on the heap) were given back after every tile and
   /// faulted in again page by page for the next: 47,000 of the 53,000 page
   /// faults of a 10³-triangle mesh's depth at 1920×1080, its first render
-  /// 137 ms instead of 38 (docs/PERFORMANCE.md, "Edge planes, corner
-  /// projection and page faults"). This sets glibc's trim threshold
+  /// 137 ms instead of 38 (docs/PERFORMANCE.md, its
+  /// memory). This sets glibc's trim threshold
   /// (`mallopt(M_TRIM_THRESHOLD)`, looked up at run time: `<malloc.h>` is
   /// not part of the Glibc module) to its largest, and its mmap threshold
   /// to 4 MiB: setting the first freezes the second at 128 KiB, where
@@ -110,7 +110,7 @@ extension Memory {
   /// This process's own peak resident memory in bytes, or nil where the
   /// system does not say. On Linux not `ru_maxrss`: the kernel carries the
   /// larger of a process's and its parent's peak across `exec`, so every
-  /// child of a large process (a bench that has written a big scene)
+  /// child of a large process (one that has written a big scene)
   /// reports at least the parent's peak; `VmHWM` of /proc/self/status is
   /// this process's alone. On macOS `ru_maxrss` is the task's own, in
   /// bytes.

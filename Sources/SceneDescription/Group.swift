@@ -24,7 +24,7 @@ public enum SceneObject<Scalar: RayScalar>: Hashable, Sendable {
   indirect case mesh(TriangleMesh<Scalar>)
   case group(Group<Scalar>)
   indirect case transform(Transform<Scalar>)
-  /// A shape of a kind the scene's readers and the fast engine do not
+  /// A shape of a kind the scene's readers and the compiled engine do not
   /// specialise, hit through its `Hittable` conformance in Double.
   indirect case shape(Shape)
 }

@@ -12,7 +12,7 @@ extension Group {
   /// group that is neither a group nor a transform, in file order, and the
   /// placement of the transforms around it (nil under none), theirs
   /// multiplied outermost first. What handles the scene kind by kind (the
-  /// fast engine's flattening, the readers' checks) goes through it, so
+  /// compiled engine's flattening, the readers' checks) goes through it, so
   /// that a new kind of object reaches each by its own `switch`
   /// (docs/ADDING-A-SHAPE.md).
   @inlinable

@@ -138,7 +138,7 @@ extension Render {
         "--engine course solves the sphere's quadratic one way (stable); "
           + "drop --intersection naive or use --engine fast.")
     case let engine?: request.engine = engine
-    case nil: request.engine = fastOnly && !check ? .fast : .course
+    case nil: request.engine = fastOnly && !check ? .fast : .default
     }
     guard (0...1000).contains(repeats) else {
       throw ValidationError(

@@ -19,7 +19,9 @@ extension Render {
         + "planes, "
         + "\(report.triangles) triangles, \(report.ellipsoids) transformed "
         + "spheres; "
-        + "nearest sphere by \(report.sphereSearch), "
+        + "nearest sphere by "
+        + (report.sphereSearch.map { "\($0)" }
+          ?? "the course engine, every object") + ", "
         + "nearest triangle by \(report.triangleSearch)"
     )
     printError(

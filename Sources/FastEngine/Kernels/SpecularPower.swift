@@ -1,11 +1,10 @@
 import Geometry
-import RealModule
 
 /// highlight^shininess for the fast engine's Phong highlights: where the
 /// shininess is a whole number from 2 to 1024 (the course's materials use
 /// 10 to 100) and the render is in Float or Double, by repeated squaring in
 /// Double, then rounded once to the render's precision; anywhere else the
-/// C library's `pow`, as the course engine computes every highlight.
+/// C library's `pow`, as `Material.Surface.shade` computes every highlight.
 ///
 /// Accuracy: each product rounds once, and a relative error in a power
 /// xᵐ is carried into xⁿ n/m times over, so the rounding errors of the

@@ -74,19 +74,28 @@ extension LengthScale {
 
     /// Every primitive of `all`.
     mutating func add(_ all: Primitives<Double>) {
-      all.spheres.withUnsafeBufferPointer { spheres in
-        addInParts(spheres.count) { extent, range in
-          for index in range { extent.add(spheres[index]) }
+      for kind in PrimitiveKind.allCases {
+        switch kind {
+        case .sphere:
+          all.spheres.withUnsafeBufferPointer { spheres in
+            addInParts(spheres.count) { extent, range in
+              for index in range { extent.add(spheres[index]) }
+            }
+          }
+        case .plane: for plane in all.planes { add(plane) }
+        case .triangle: for mesh in all.triangles.parts { add(mesh) }
+        case .ellipsoid:
+          for ellipsoid in all.transformedSpheres {
+            let reach = ellipsoid.reach(from: eye)
+            largest = Swift.max(largest, reach)
+            let axis = ellipsoid.shortestAxis
+            axisSquared = Swift.min(axisSquared, axis * axis)
+            reachInAxes = Swift.max(reachInAxes, reach / axis)
+          }
+        case .shape:
+          // Tested in the world's units, at no scale.
+          break
         }
-      }
-      for plane in all.planes { add(plane) }
-      for mesh in all.triangles.parts { add(mesh) }
-      for ellipsoid in all.transformedSpheres {
-        let reach = ellipsoid.reach(from: eye)
-        largest = Swift.max(largest, reach)
-        let axis = ellipsoid.shortestAxis
-        axisSquared = Swift.min(axisSquared, axis * axis)
-        reachInAxes = Swift.max(reachInAxes, reach / axis)
       }
     }
 

@@ -45,21 +45,32 @@ extension LengthScale {
     _ all: Primitives<Double>, eye: Vector3<Double>
   ) -> Double {
     var largest = eye.maxMagnitude
-    for sphere in all.spheres {
-      largest = Swift.max(
-        largest, sphere.center.maxMagnitude, sphere.radius.magnitude)
-    }
-    for plane in all.planes {
-      largest = Swift.max(largest, plane.offset.magnitude)
-    }
-    for mesh in all.triangles.parts {
-      for vertex in mesh.vertices {
-        largest = Swift.max(largest, vertex.maxMagnitude)
+    for kind in PrimitiveKind.allCases {
+      switch kind {
+      case .sphere:
+        for sphere in all.spheres {
+          largest = Swift.max(
+            largest, sphere.center.maxMagnitude, sphere.radius.magnitude)
+        }
+      case .plane:
+        for plane in all.planes {
+          largest = Swift.max(largest, plane.offset.magnitude)
+        }
+      case .triangle:
+        for mesh in all.triangles.parts {
+          for vertex in mesh.vertices {
+            largest = Swift.max(largest, vertex.maxMagnitude)
+          }
+        }
+      case .ellipsoid:
+        for ellipsoid in all.transformedSpheres {
+          // Its reach from the origin: its offset from an eye there.
+          largest = Swift.max(largest, ellipsoid.reach(from: .zero))
+        }
+      case .shape:
+        // Not scaled: tested in the world's units.
+        break
       }
-    }
-    for ellipsoid in all.transformedSpheres {
-      // Its reach from the origin: its offset from an eye there.
-      largest = Swift.max(largest, ellipsoid.reach(from: .zero))
     }
     return largest
   }
@@ -75,27 +86,35 @@ extension Primitives<Double> {
   /// space (M⁻¹ applied to the origin now) is the same bits.
   func translated(by eye: Vector3<Double>) -> Primitives {
     var result = Primitives()
-    result.spheres = spheres.map {
-      Sphere(
-        center: $0.center - eye, radius: $0.radius,
-        materialIndex: $0.materialIndex)
+    for kind in PrimitiveKind.allCases {
+      switch kind {
+      case .sphere:
+        result.spheres = spheres.map {
+          Sphere(
+            center: $0.center - eye, radius: $0.radius,
+            materialIndex: $0.materialIndex)
+        }
+      case .plane:
+        result.planes = planes.map {
+          var plane = $0
+          plane.offset = CameraRelative.plane(
+            normal: $0.normal, offset: $0.offset, eye: eye)
+          return plane
+        }
+      case .triangle:
+        // Each vertex is 1·x + 0·y + 0·z − eye.x: x − eye.x rounded once;
+        // the normals' cofactors of the identity are themselves.
+        let move = Matrix4<Double>.translation(-eye)
+        result.triangles = triangles.mapParts { $0.moved(by: move) }
+      case .ellipsoid:
+        result.transformedSpheres = transformedSpheres.map {
+          TransformedSphere(
+            sphere: $0.sphere, matrix: $0.matrix.movedBy(-eye),
+            inverse: $0.inverse.applied(to: eye))
+        }
+      case .shape: result.shapes = shapes
+      }
     }
-    result.planes = planes.map {
-      var plane = $0
-      plane.offset = CameraRelative.plane(
-        normal: $0.normal, offset: $0.offset, eye: eye)
-      return plane
-    }
-    // Each vertex is 1·x + 0·y + 0·z − eye.x: x − eye.x rounded once; the
-    // normals' cofactors of the identity are themselves.
-    let move = Matrix4<Double>.translation(-eye)
-    result.triangles = triangles.mapParts { $0.moved(by: move) }
-    result.transformedSpheres = transformedSpheres.map {
-      TransformedSphere(
-        sphere: $0.sphere, matrix: $0.matrix.movedBy(-eye),
-        inverse: $0.inverse.applied(to: eye))
-    }
-    result.shapes = shapes
     return result
   }
 }

@@ -67,20 +67,31 @@ extension LengthScale {
         append(&others[k, default: Primitives()])
       }
     }
-    for sphere in all.spheres {
-      place(.sphere(sphere)) { $0.spheres.append(sphere) }
+    for kind in PrimitiveKind.allCases {
+      switch kind {
+      case .sphere:
+        for sphere in all.spheres {
+          place(.sphere(sphere)) { $0.spheres.append(sphere) }
+        }
+      case .plane:
+        for plane in all.planes {
+          place(.plane(plane)) { $0.planes.append(plane) }
+        }
+      case .triangle:
+        for triangle in all.triangles {
+          place(.triangle(triangle)) { $0.triangles.append(triangle) }
+        }
+      case .ellipsoid:
+        for ellipsoid in all.transformedSpheres {
+          place(.ellipsoid(ellipsoid)) {
+            $0.transformedSpheres.append(ellipsoid)
+          }
+        }
+      case .shape:
+        // Tested in the world's units, whatever the scale.
+        main.shapes = all.shapes
+      }
     }
-    for plane in all.planes {
-      place(.plane(plane)) { $0.planes.append(plane) }
-    }
-    for triangle in all.triangles {
-      place(.triangle(triangle)) { $0.triangles.append(triangle) }
-    }
-    for ellipsoid in all.transformedSpheres {
-      place(.ellipsoid(ellipsoid)) { $0.transformedSpheres.append(ellipsoid) }
-    }
-    // Other shapes are tested in the world's units, whatever the scale.
-    main.shapes = all.shapes
     return Layers(
       main: main, exponent: exponent,
       others: others.sorted { $0.key > $1.key }.map {

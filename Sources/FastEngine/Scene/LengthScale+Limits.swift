@@ -17,7 +17,7 @@ extension LengthScale {
   /// would overflow). A plane never does: its only length is its distance
   /// from the eye. Objects that fail only at the scene's common scale are
   /// traced at their own (`layers`); these fail at their own too, and the
-  /// command line refuses the scene rather than draw them wrong.
+  /// scene is refused rather than drawn wrong.
   ///
   /// Nothing here depends on where the eye is: every length is an offset
   /// from it, so an eye at 1e14 beside a unit sphere, or at 1e300 beside
@@ -90,7 +90,7 @@ extension LengthScale {
   /// is), or whose products with its distance from the eye overflow
   /// (`tooLargeUnscaled`: a sphere 1e200 from the eye; `beyondRange`
   /// true). Every scene `problem` refuses in double fails here too. The
-  /// pipeline words it for the engine that computes so.
+  /// caller words it for the engine that computes so.
   package static func unscaledFailure(_ scene: Scene)
     -> (failure: Failure, beyondRange: Bool)?
   {

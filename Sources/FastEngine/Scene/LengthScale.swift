@@ -131,10 +131,18 @@ package enum LengthScale {
 extension Primitives<Double> {
   /// Calls `body` with every primitive, kind by kind.
   func forEach(_ body: (LengthScale.Primitive) -> Void) {
-    for sphere in spheres { body(.sphere(sphere)) }
-    for plane in planes { body(.plane(plane)) }
-    for triangle in triangles { body(.triangle(triangle)) }
-    for ellipsoid in transformedSpheres { body(.ellipsoid(ellipsoid)) }
+    for kind in PrimitiveKind.allCases {
+      switch kind {
+      case .sphere: for sphere in spheres { body(.sphere(sphere)) }
+      case .plane: for plane in planes { body(.plane(plane)) }
+      case .triangle: for triangle in triangles { body(.triangle(triangle)) }
+      case .ellipsoid:
+        for ellipsoid in transformedSpheres { body(.ellipsoid(ellipsoid)) }
+      case .shape:
+        // Tested in the world's units, at no scale: no length to measure.
+        break
+      }
+    }
   }
 }
 
@@ -186,17 +194,24 @@ extension Primitives {
   @usableFromInline
   package func scaled(by factor: Scalar) -> Primitives {
     var result = Primitives()
-    result.spheres = spheres.map { $0.scaled(by: factor) }
-    result.planes = planes.map { $0.scaled(by: factor) }
-    result.triangles = triangles.mapParts { $0.scaled(by: factor) }
-    result.transformedSpheres = transformedSpheres.map {
-      TransformedSphere(
-        sphere: $0.sphere, matrix: $0.matrix.rowsScaled(by: factor),
-        inverse: $0.inverse.columnsScaled(by: 1 / factor))
+    for kind in PrimitiveKind.allCases {
+      switch kind {
+      case .sphere: result.spheres = spheres.map { $0.scaled(by: factor) }
+      case .plane: result.planes = planes.map { $0.scaled(by: factor) }
+      case .triangle:
+        result.triangles = triangles.mapParts { $0.scaled(by: factor) }
+      case .ellipsoid:
+        result.transformedSpheres = transformedSpheres.map {
+          TransformedSphere(
+            sphere: $0.sphere, matrix: $0.matrix.rowsScaled(by: factor),
+            inverse: $0.inverse.columnsScaled(by: 1 / factor))
+        }
+      case .shape:
+        // Kept in the world's units: the fast engine tests them with the
+        // world's ray (`CompiledScene.testShapes`).
+        result.shapes = shapes
+      }
     }
-    // Kept in the world's units: the fast engine tests them with the
-    // world's ray (`CompiledScene.testShapes`).
-    result.shapes = shapes
     return result
   }
 }

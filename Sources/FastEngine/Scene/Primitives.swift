@@ -34,6 +34,22 @@ package struct Primitives<Scalar: RayScalar>: Sendable {
   package var shapes: [PlacedShape] = []
 }
 
+/// The kinds of primitive a flattened scene holds (`Primitives`), in the
+/// order each walk over it takes them: the fast engine's one list of
+/// kinds. Every walk over a flattened scene (placing, scaling, moving to
+/// the eye, measuring, layering, compiling) switches over it kind by kind,
+/// so that the compiler names each walk a new kind must join.
+package enum PrimitiveKind: CaseIterable, Sendable {
+  case sphere
+  case plane
+  /// Loose triangles and meshes.
+  case triangle
+  /// A sphere under a transform that is not a similarity.
+  case ellipsoid
+  /// A shape of one's own.
+  case shape
+}
+
 /// A shape of one's own (`SceneObject.shape`) where the scene's transforms
 /// put it: the fast engine hits it through its `Hittable` conformance, the
 /// ray taken into the shape's space (`CompiledScene.testShapes`).

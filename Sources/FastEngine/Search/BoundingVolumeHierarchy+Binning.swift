@@ -90,7 +90,7 @@ extension BoundingVolumeHierarchy {
   /// fewer bins: two per sphere, at least four.
   ///
   /// Only one axis: binning all three cost twice the build time and
-  /// rendered no faster in the benchmarks behind `defaultThreshold`.
+  /// rendered no faster in the timings behind `defaultThreshold`.
   struct Binning {
     var axis: Int
     var origin: Scalar

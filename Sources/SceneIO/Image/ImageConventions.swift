@@ -5,7 +5,7 @@ import PlatformSupport
 /// How raw depth, normals and colour become 8-bit pixels in each style (the
 /// two conventions measured from the course's images; see the README).
 ///
-/// The row functions are prespecialised (`@_specialize`): the pipeline calls
+/// The row functions are prespecialised (`@_specialize`): their callers call
 /// them from another module, where a `package` generic runs unspecialised,
 /// looking up generic metadata for every pixel (5 % of a course-engine
 /// render of the bunny, and a shared cache every thread consults).

@@ -42,6 +42,9 @@ package enum PlistSceneReader {
   package static func parse(
     bytes: [UInt8], file: String, options: SceneOptions = .init(style: .course)
   ) throws(SceneError) -> Scene {
+    if let problem = options.shapeNameProblem() {
+      throw SceneError(file: file, line: 0, column: 0, message: problem)
+    }
     let root = try PropertyList.decode(
       bytes, file: SceneParser.escaped(file))
     var builder = PlistSceneBuilder(file: file, options: options)

@@ -14,11 +14,12 @@ package struct SceneOptions: Sendable {
   /// refuses only what Double cannot hold either.
   package var precision: NumberRange
   /// Kinds of object beyond the readers' own, read by name (the course's
-  /// `CourseShapes.all`, passed in by the command line).
+  /// `CourseShapes.all`, handed down by the caller). Each must have a name
+  /// of its own (`shapeNameProblem`).
   package var shapes: [ShapeKind] = []
   /// Threads that read a large scene or mesh file and parse a large mesh,
   /// as the render's: the scene and its meshes are the same for any
-  /// count. Every core by default, as a render's (`--threads`).
+  /// count. Every core by default, as a render's.
   package var threads: Int
 
   package init(
@@ -43,6 +44,26 @@ package struct SceneOptions: Sendable {
     self.precision = precision
     self.shapes = shapes
     self.threads = threads
+  }
+}
+
+extension SceneOptions {
+  /// Why `shapes` cannot be read beside the readers' own kinds, or nil: a
+  /// shape of one's own named like a kind of either format (it would take
+  /// that kind's place without a word) or like another shape of one's own.
+  func shapeNameProblem() -> String? {
+    var seen: Set<String> = []
+    for kind in shapes {
+      if PlistSceneBuilder.objectTypes.contains(kind.name) {
+        return "the shape of one's own '\(kind.name)' is named like the "
+          + "scene formats' own \(kind.name): give it a name of its own"
+      }
+      if !seen.insert(kind.name).inserted {
+        return "two shapes of one's own are named '\(kind.name)': give each "
+          + "a name of its own"
+      }
+    }
+    return nil
   }
 }
 

@@ -152,6 +152,9 @@ package struct SceneParser {
   // MARK: - Blocks
 
   mutating func parseScene() throws(SceneError) -> Scene {
+    if let problem = options.shapeNameProblem() {
+      throw SceneError(file: file, line: 0, column: 0, message: problem)
+    }
     var camera: PerspectiveCamera<Double>?
     var lights: [Light<Double>]?
     var background: (color: RGB<Double>?, ambient: RGB<Double>?)?

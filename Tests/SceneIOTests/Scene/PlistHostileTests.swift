@@ -5,7 +5,6 @@ import XCTest
 @testable import Geometry
 @testable import SceneDescription
 @testable import ExactArithmetic
-@testable import FastEngine
 @testable import PlatformSupport
 import TestSupport
 
