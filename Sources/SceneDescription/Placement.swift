@@ -45,8 +45,30 @@ extension SceneObject {
     }
   }
 
+  /// Which kind of entry this is.
+  package var kind: SceneObjectKind {
+    switch self {
+    case .sphere: .sphere
+    case .plane: .plane
+    case .triangle: .triangle
+    case .mesh: .mesh
+    case .group: .group
+    case .transform: .transform
+    case .shape: .shape
+    }
+  }
+
   /// The kind's name as the text format writes it.
-  package var kindName: String {
+  package var kindName: String { kind.name }
+}
+
+/// The kinds of entry a group holds (`SceneObject`), listed: what a test
+/// that must meet every kind walks, so that a new kind joins it.
+package enum SceneObjectKind: CaseIterable, Sendable {
+  case sphere, plane, triangle, mesh, group, transform, shape
+
+  /// The name the text format writes it by.
+  package var name: String {
     switch self {
     case .sphere: "Sphere"
     case .plane: "Plane"
