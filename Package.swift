@@ -119,9 +119,10 @@ let courseSettings: [SwiftSetting] =
   variable("RAYTRACE_OPTIMIZED_COURSE") != nil ? optimizedInDebugBuilds : []
 
 // Release builds optimise across the library's targets: the fast engine's
-// generic kernels are specialised for Float and Double with the numerics
-// of Numerics and Geometry inlined into them, as when they were one module (without
-// it the 10⁴-sphere render was 2.5 times slower). Debug builds do not: it
+// generic kernels are specialised for Float and Double with the
+// arithmetic of ExactArithmetic and Geometry inlined into them, as when
+// they were one module (without it the 10⁴-sphere render was 2.5 times
+// slower). Debug builds do not: it
 // would cost the student's loop its build time.
 let acrossTargets: [SwiftSetting] = [
   .unsafeFlags(["-cross-module-optimization"], .when(configuration: .release))
@@ -139,19 +140,24 @@ let package = Package(
   //   Geometry          vectors, rays, matrices, boxes, hits, the hit
   //                     protocol, camera, lights, materials, textures, the
   //                     image's conventions: the leaf
-  //   SceneDescription  the scene as read: plain data, no intersection
+  //   SceneDescription  the scene as read: plain data, no intersection;
+  //                     its one walk over the objects (`forEachPlaced`)
   //   Course            the course's shapes and loop: what a student edits
-  //   Platform          the C library: files, memory, threads, processes
-  //   Numerics          the fast engine's numerics: double-double,
-  //                     compensated sums, length scales, ellipsoid frames,
-  //                     exact planes, its intersection kernels
+  //   PlatformSupport   the C library: files, memory, threads, processes
+  //   ExactArithmetic   double-double, compensated and exact sums, the
+  //                     reference scalar: no scene, no engine
   //   SceneIO           the scene, mesh and image readers and writers
-  //   FastEngine        the fast engine: records, search structures
-  //   Pipeline          read, check, render with an engine, encode, commit
+  //   FastEngine        the fast engine: the scene flattened and scaled,
+  //                     its kernels, records and search structures
+  //   Pipeline          read, check, render with an engine, encode, commit;
+  //                     the default engine, what each engine cannot hold
   //   Measurement       `raytrace report`, `bench`, `compare`, the check
   //                     (beside Pipeline, not above it: SwiftPM starts a
   //                     target only when those below it are compiled)
   //   raytrace          the executable: arguments and messages
+  // Scripts/check-layers.py checks that every file imports only what its
+  // target declares and that nothing below the pipeline names an engine
+  // not its own, an option or what sits above it.
   // Course needs only the leaf and the description: editing it rebuilds
   // only it, its tests, the pipeline, the measurements and the executable.
   targets: standIns + [
