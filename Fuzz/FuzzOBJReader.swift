@@ -10,7 +10,7 @@
 @testable import SceneIO
 @testable import Geometry
 @testable import SceneDescription
-@testable import Numerics
+@testable import ExactArithmetic
 @testable import PlatformSupport
 
 @_cdecl("LLVMFuzzerTestOneInput")

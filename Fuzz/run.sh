@@ -21,8 +21,8 @@
 # same sources SwiftPM compiles, instrumented with -sanitize=fuzzer,address:
 #   RealModule, ArgumentParser     the stand-ins, as they are, or the real
 #                                  packages' modules (below)
-#   Geometry, SceneDescription, Course, PlatformSupport, Numerics, SceneIO,
-#   FastEngine, Pipeline, Measurement
+#   Geometry, SceneDescription, Course, PlatformSupport, ExactArithmetic,
+#   SceneIO, FastEngine, Pipeline, Measurement
 #                                  the library's targets in the order they
 #                                  import each other, -enable-testing: the
 #                                  fuzzer reaches the internal
@@ -162,7 +162,7 @@ compile_library() {
   compile_real_module
   local module
   library_objects=()
-  for module in Geometry SceneDescription Course PlatformSupport Numerics \
+  for module in Geometry SceneDescription Course PlatformSupport ExactArithmetic \
     SceneIO FastEngine Pipeline Measurement; do
     compile "$module" "Sources/$module" -enable-testing "${numerics_flags[@]}" \
       -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap

@@ -2,8 +2,8 @@ import Geometry
 import PlatformSupport
 
 // The C library's Double functions (its module is imported for the whole
-// package by PlatformSupport's Platform.swift), named at file scope where the names
-// are not shadowed by DoubleDouble's static members below.
+// package by PlatformSupport's Platform.swift), named at file scope where
+// the names are not shadowed by DoubleDouble's static members below.
 private func cSin(_ x: Double) -> Double { sin(x) }
 private func cCos(_ x: Double) -> Double { cos(x) }
 private func cTan(_ x: Double) -> Double { tan(x) }

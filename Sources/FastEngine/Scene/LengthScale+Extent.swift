@@ -171,8 +171,9 @@ extension LengthScale {
 
   /// A triangle's longest edge and the farthest of its vertices from the
   /// eye, in max-norm.
-  package static func edgeAndReach(_ triangle: Triangle<Double>, eye: Vector3<Double>)
-    -> (edge: Double, reach: Double)
+  package static func edgeAndReach(
+    _ triangle: Triangle<Double>, eye: Vector3<Double>
+  ) -> (edge: Double, reach: Double)
   {
     edgeAndReach((triangle.v0, triangle.v1, triangle.v2), eye: eye)
   }

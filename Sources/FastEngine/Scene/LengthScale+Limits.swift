@@ -115,8 +115,8 @@ extension LengthScale {
   }
 
   /// The primitive's failure when what a computation at scale 1
-  /// multiplies by its distance from the eye overflows Double: a sphere's |o − c|²
-  /// (three squares: its reach below 2^510), an ellipsoid's local eye
+  /// multiplies by its distance from the eye overflows Double: a sphere's
+  /// |o − c|² (three squares: its reach below 2^510), an ellipsoid's local eye
   /// M⁻¹·o squared (its reach over its shortest axis below 2^510), a
   /// triangle's s × edge (its reach times its longest edge below 2^1020,
   /// Cramer's rule). A plane's t = (d − n·o)/n·d has no product to

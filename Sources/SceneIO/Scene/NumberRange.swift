@@ -14,9 +14,10 @@ package enum NumberRange: String, CaseIterable, Sendable {
 /// lost; 1e-50 becomes 0, 1e-40 a subnormal whose square is 0. Rather than
 /// draw such a scene silently empty or silently full, the readers refuse
 /// it where the number is written. They learn the precision from
-/// `SceneOptions.precision` (handed down by their caller) rather than recording every number's position for a later
-/// check: the position is at hand while a number is read, and a scene
-/// read for one precision is not reused for another.
+/// `SceneOptions.precision` (handed down by their caller) rather than
+/// recording every number's position for a later check: the position is
+/// at hand while a number is read, and a scene read for one precision is
+/// not reused for another.
 extension NumberRange {
   /// The largest finite magnitude of the precision.
   @usableFromInline

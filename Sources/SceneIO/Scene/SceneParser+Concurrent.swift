@@ -21,7 +21,7 @@ extension SceneParser {
     let bytes = tokenizer.bytes
     guard declared >= concurrentFrom.groupSize,
       bytes.count - start >= concurrentFrom.bytes,
-      sysconf(Int32(_SC_NPROCESSORS_ONLN)) > 1
+      options.threads > 1
     else { return nil }
     var index = start + (bytes.count - start) / 2
     while index < bytes.count && bytes[index] != UInt8(ascii: "\n") {

@@ -59,7 +59,9 @@ final class EveryKindTests: XCTestCase {
         up: Vector3(0, 1, 0), angle: 40))
     return Scene(
       camera: camera,
-      lights: [.directional(direction: Vector3(-1, -1, -1), color: Vector3(1, 1, 1))],
+      lights: [
+        .directional(direction: Vector3(-1, -1, -1), color: Vector3(1, 1, 1))
+      ],
       materials: [Material(diffuse: Vector3(0.8, 0.6, 0.4))],
       root: SceneDescription.Group([object]))
   }
