@@ -217,7 +217,7 @@ let package = Package(
     // target, as swift-argument-parser's ArgumentParserTestHelpers is.
     .target(
       name: "TestSupport", dependencies: ["Geometry", "ExactArithmetic"],
-      path: "Tests/TestSupport"
+      path: "Tests/TestSupport", swiftSettings: optimizedInDebugBuilds
     ),
     // One test target per source target, each depending on what it
     // imports; only raytraceTests on the executable.
