@@ -29,6 +29,36 @@ numerics=$(cd "$2" && pwd)
 cd "$(dirname "$0")/.."
 scratch=.build/real-packages
 
+# Each checkout is built from a copy of its own beside the scratch folder,
+# so that a read-only checkout (../shared/packages) is never written to,
+# with the symbolic links that a plain copy of a repository's tree turns
+# into files restored: a file with no extension whose whole content is a
+# relative path to something beside it (swift-argument-parser's
+# Plugins/GenerateManual/GenerateCommon, a link to ../GenerateCommon).
+copy_checkout() {
+  local from=$1 to
+  to=$PWD/$scratch-checkouts/$(basename "$from")
+  rm -rf "$to"
+  mkdir -p "$(dirname "$to")"
+  cp -R "$from" "$to"
+  chmod -R u+w "$to"
+  local file target
+  while IFS= read -r -d '' file; do
+    target=$(cat "$file")
+    case $target in
+    */* | ..) ;;
+    *) continue ;;
+    esac
+    if [ -e "$(dirname "$file")/$target" ]; then
+      rm "$file"
+      ln -s "$target" "$file"
+    fi
+  done < <(find "$to" -type f -size -256c ! -name '*.*' -print0)
+  echo "$to"
+}
+parser=$(copy_checkout "$parser")
+numerics=$(copy_checkout "$numerics")
+
 # The stand-in build must not see the switch, whatever the caller set.
 unset RAYTRACE_PACKAGES RAYTRACE_ARGUMENT_PARSER_PATH RAYTRACE_NUMERICS_PATH
 real() {
