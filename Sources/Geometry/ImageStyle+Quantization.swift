@@ -1,5 +1,3 @@
-import Geometry
-
 /// How raw depth, normals and colour become 8-bit values in each style, a
 /// value at a time: what a render stores for an 8-bit output
 /// (`RenderSettings.quantizedOutputs`) and the writers encode

@@ -230,11 +230,11 @@ package enum RenderJob {
     var report = try write(
       rendered.result.buffers, output, clock: &clock, search: nil,
       seconds: rendered.seconds, compileSeconds: 0)
-    let all = scene.root.flattened()
-    report.spheres = all.spheres.count
-    report.planes = all.planes.count
-    report.triangles = all.triangles.count
-    report.ellipsoids = all.transformedSpheres.count
+    let counts = scene.root.primitiveCounts
+    report.spheres = counts.spheres
+    report.planes = counts.planes
+    report.triangles = counts.triangles
+    report.ellipsoids = counts.ellipsoids
     return report
   }
 

@@ -148,3 +148,29 @@ extension TriangleMesh {
     return moved
   }
 }
+
+extension Group {
+  /// How many spheres, planes, triangles and ellipsoids (spheres a
+  /// placement stretches) the group holds where its transforms put them,
+  /// as a render counts them; shapes of one's own are not counted.
+  package var primitiveCounts:
+    (spheres: Int, planes: Int, triangles: Int, ellipsoids: Int)
+  {
+    var counts = (spheres: 0, planes: 0, triangles: 0, ellipsoids: 0)
+    forEachPlaced { object, placement in
+      switch object {
+      case .sphere:
+        if let placement, placement.matrix.similarityScale == nil {
+          counts.ellipsoids += 1
+        } else {
+          counts.spheres += 1
+        }
+      case .plane: counts.planes += 1
+      case .triangle: counts.triangles += 1
+      case .mesh(let mesh): counts.triangles += mesh.count
+      case .shape, .group, .transform: break
+      }
+    }
+    return counts
+  }
+}
