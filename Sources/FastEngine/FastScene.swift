@@ -172,10 +172,11 @@ package enum AnyRenderBuffers: Sendable {
 }
 
 extension FastScene {
-  /// The reference of a render in `precision`: the very camera rays it
-  /// traces, intersected by the stable method in R (ReferenceScalar, or
-  /// DoubleDouble), with `CompiledScene`'s own thresholds. The references
-  /// the report and the tests use are specialised here.
+  /// The engine in a wider scalar: the very camera rays a render in
+  /// `precision` traces, intersected by the stable method in R
+  /// (ReferenceScalar, or DoubleDouble), with `CompiledScene`'s own
+  /// thresholds: what a render's error is measured against. Specialised
+  /// here, in the engine's module, for every R a caller asks.
   package static func reference<R: RayScalar>(
     _ scene: Scene, settings: RenderSettings, rays precision: Precision,
     in _: R.Type
