@@ -44,8 +44,10 @@ package func specularPower<Scalar: RayScalar>(_ x: Scalar, _ y: Scalar)
 }
 
 /// xʸ by repeated squaring when y is a whole number from 2 to 1024, else
-/// nil.
-@usableFromInline @inline(__always)
+/// nil. A call, not inlined into the shading: inlined, the course scene's
+/// 16-sample render ran 0.9 % more instructions (callgrind) and 2.6 %
+/// longer.
+@usableFromInline @inline(never)
 func wholePower(_ x: Double, _ y: Double) -> Double? {
   guard y >= 2, y <= 1024, y.rounded(.towardZero) == y else { return nil }
   var exponent = Int(y)
