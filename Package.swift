@@ -147,8 +147,9 @@ let package = Package(
   //   ExactArithmetic   double-double, compensated and exact sums, the
   //                     reference scalar: no scene, no engine
   //   SceneIO           the scene, mesh and image readers and writers
-  //   FastEngine        the fast engine: the scene flattened and scaled,
-  //                     its kernels, records and search structures
+  //   FastKernels       the fast engine's kernels and the scene flattened
+  //                     and scaled for it (its length scales)
+  //   FastEngine        the fast engine: records, search structures, renders
   //   Pipeline          read, check, render with an engine, encode, commit;
   //                     the default engine, what each engine cannot hold
   //   Measurement       `raytrace report`, `bench`, `compare`, the check
@@ -185,31 +186,41 @@ let package = Package(
       name: "SceneIO",
       dependencies: ["Geometry", "SceneDescription", "PlatformSupport", "CZlib"],
       swiftSettings: acrossTargets),
+    // Unoptimised in debug builds, as the description and the readers:
+    // its kernels are @inlinable, specialised and optimised where the
+    // fast engine calls them.
+    .target(
+      name: "FastKernels",
+      dependencies: [
+        "Geometry", "SceneDescription", "ExactArithmetic", "PlatformSupport",
+      ],
+      swiftSettings: acrossTargets),
     .target(
       name: "FastEngine",
       dependencies: [
         "Geometry", "SceneDescription", "ExactArithmetic", "PlatformSupport",
+        "FastKernels",
       ],
       swiftSettings: acrossTargets + optimizedInDebugBuilds),
     .target(
       name: "Pipeline",
       dependencies: [
         "Geometry", "SceneDescription", "Course", "ExactArithmetic", "PlatformSupport",
-        "SceneIO", "FastEngine",
+        "SceneIO", "FastEngine", "FastKernels",
       ],
       swiftSettings: acrossTargets),
     .target(
       name: "Measurement",
       dependencies: [
         "Course", "Geometry", "SceneDescription", "ExactArithmetic", "PlatformSupport", "SceneIO",
-        "FastEngine", realModule,
+        "FastEngine", "FastKernels", realModule,
       ]
     ),
     .executableTarget(
       name: "raytrace",
       dependencies: [
         "Course", "Geometry", "SceneDescription", "ExactArithmetic", "PlatformSupport", "SceneIO",
-        "FastEngine", "Pipeline", "Measurement", argumentParser,
+        "FastEngine", "FastKernels", "Pipeline", "Measurement", argumentParser,
       ]
     ),
     // Helpers more than one test target uses (seeded random numbers,
@@ -235,13 +246,15 @@ let package = Package(
         "SceneIO", "Geometry", "SceneDescription", "ExactArithmetic",
         "PlatformSupport", "CZlib", "TestSupport",
         // Hostile scenes are checked as a render places them (`flattened`).
-        "FastEngine",
+        "FastEngine", "FastKernels",
       ]
     ),
     .testTarget(
+      // The fast engine's and its kernels' (FastKernels): the kernels are
+      // tested against the reference in Reference/, beside the engine's.
       name: "FastEngineTests",
       dependencies: [
-        "FastEngine", "Geometry", "SceneDescription", "ExactArithmetic", "SceneIO",
+        "FastEngine", "FastKernels", "Geometry", "SceneDescription", "ExactArithmetic", "SceneIO",
         "PlatformSupport", "TestSupport",
         // The length scales' tests measure renders (`AccuracyRender`) and
         // the limits the pipeline words (`CourseEngineLimits`).
@@ -263,7 +276,7 @@ let package = Package(
       name: "MeasurementTests",
       dependencies: [
         "Measurement", "Course", "Geometry", "SceneDescription", "ExactArithmetic",
-        "PlatformSupport", "SceneIO", "FastEngine", "Pipeline", "TestSupport",
+        "PlatformSupport", "SceneIO", "FastEngine", "FastKernels", "Pipeline", "TestSupport",
       ]
     ),
     // The command line: runs the executable.

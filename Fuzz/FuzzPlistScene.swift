@@ -19,6 +19,7 @@
 // size.
 
 @testable import FastEngine
+@testable import FastKernels
 @testable import SceneIO
 @testable import Geometry
 @testable import SceneDescription

@@ -27,6 +27,7 @@
 // - the normal of every hit is finite and unit length, the colour finite.
 
 @testable import FastEngine
+@testable import FastKernels
 @testable import SceneIO
 @testable import Geometry
 @testable import SceneDescription

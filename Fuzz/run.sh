@@ -22,7 +22,7 @@
 #   RealModule, ArgumentParser     the stand-ins, as they are, or the real
 #                                  packages' modules (below)
 #   Geometry, SceneDescription, Course, PlatformSupport, ExactArithmetic,
-#   SceneIO, FastEngine, Pipeline, Measurement
+#   SceneIO, FastKernels, FastEngine, Pipeline, Measurement
 #                                  the library's targets in the order they
 #                                  import each other, -enable-testing: the
 #                                  fuzzer reaches the internal
@@ -163,7 +163,7 @@ compile_library() {
   local module
   library_objects=()
   for module in Geometry SceneDescription Course PlatformSupport ExactArithmetic \
-    SceneIO FastEngine Pipeline Measurement; do
+    SceneIO FastKernels FastEngine Pipeline Measurement; do
     compile "$module" "Sources/$module" -enable-testing "${numerics_flags[@]}" \
       -Xcc -fmodule-map-file=Sources/CZlib/module.modulemap
     library_objects+=("$objects/$module.o")

@@ -37,7 +37,8 @@ WORDS = {
 }
 
 # What each target below the pipeline must not name. The course target
-# is the course engine, the fast engine's target is the fast engine.
+# is the course engine; the fast engine's targets (its kernels beneath it)
+# are the fast engine.
 BELOW = {
     "Geometry": list(WORDS),
     "SceneDescription": list(WORDS),
@@ -46,6 +47,8 @@ BELOW = {
     "SceneIO": list(WORDS),
     "Course": ["the fast engine", "a command-line option",
                "what sits above the engines"],
+    "FastKernels": ["the course engine", "a command-line option",
+                    "what sits above the engines"],
     "FastEngine": ["the course engine", "a command-line option",
                    "what sits above the engines"],
 }

@@ -1,3 +1,4 @@
+import FastKernels
 import Geometry
 
 /// A camera ray as the render loop uses it: in the kernel's frame, with the

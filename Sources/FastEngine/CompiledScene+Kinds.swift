@@ -1,3 +1,4 @@
+import FastKernels
 extension CompiledScene {
   /// Whether every primitive the scene holds is of one of `kinds`: what a
   /// fast path for some kinds asks, so that a kind added later is not

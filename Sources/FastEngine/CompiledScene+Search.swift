@@ -1,3 +1,4 @@
+import FastKernels
 import Geometry
 
 /// The nearest hit of one camera ray: the spheres by a search of the

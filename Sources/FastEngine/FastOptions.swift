@@ -1,3 +1,4 @@
+import FastKernels
 
 /// How the fast engine renders: its precision and method, and the scene
 /// sizes from which it changes its search.

@@ -1,3 +1,4 @@
+import FastKernels
 import ExactArithmetic
 import Geometry
 import SceneDescription

@@ -1,4 +1,5 @@
 import FastEngine
+import FastKernels
 import SceneDescription
 
 /// What the course engine's own arithmetic cannot hold: it computes with

@@ -1,4 +1,5 @@
 import FastEngine
+import FastKernels
 import SceneIO
 
 /// What a user can do about a scene that a precision or an engine cannot

@@ -5,6 +5,7 @@ import SceneDescription
 import PlatformSupport
 import Course
 import FastEngine
+import FastKernels
 
 /// One image file a render writes.
 package struct OutputFile: Hashable, Sendable {

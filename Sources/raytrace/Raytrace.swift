@@ -1,5 +1,6 @@
 import ArgumentParser
 import FastEngine
+import FastKernels
 import Pipeline
 import Measurement
 import SceneIO

@@ -3,6 +3,7 @@ import ArgumentParser
 import enum Course.CourseEngine
 import enum Course.CourseShapes
 import FastEngine
+import FastKernels
 import Pipeline
 import Measurement
 import SceneIO

@@ -1,6 +1,7 @@
 import ArgumentParser
 import enum Course.CourseShapes
 import FastEngine
+import FastKernels
 import Pipeline
 import Measurement
 import SceneIO

@@ -1,6 +1,7 @@
 import XCTest
 
 @testable import FastEngine
+@testable import FastKernels
 @testable import Geometry
 @testable import SceneDescription
 @testable import ExactArithmetic

@@ -3,6 +3,7 @@ import SceneDescription
 import XCTest
 
 @testable import FastEngine
+@testable import FastKernels
 
 /// `Group.primitiveCounts`, which a course-engine render reports without
 /// flattening the scene, counts what flattening makes.

@@ -1,6 +1,7 @@
 import ExactArithmetic
 import Course
 import FastEngine
+import FastKernels
 import SceneIO
 import Geometry
 import SceneDescription

@@ -1,5 +1,6 @@
 import ExactArithmetic
 import FastEngine
+import FastKernels
 import Geometry
 import SceneDescription
 

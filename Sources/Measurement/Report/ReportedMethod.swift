@@ -1,4 +1,5 @@
 import FastEngine
+import FastKernels
 
 /// What a row of `raytrace report` measures: one of the fast engine's
 /// intersection methods, or the course engine (the student's code: Double,

@@ -2,6 +2,7 @@ import XCTest
 
 @testable import ExactArithmetic
 @testable import FastEngine
+@testable import FastKernels
 @testable import Geometry
 import TestSupport
 

@@ -1,4 +1,5 @@
 @testable import FastEngine
+@testable import FastKernels
 @testable import Geometry
 @testable import SceneDescription
 @testable import ExactArithmetic

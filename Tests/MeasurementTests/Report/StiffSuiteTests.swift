@@ -4,6 +4,7 @@ import XCTest
 @testable import Course
 @testable import Pipeline
 @testable import FastEngine
+@testable import FastKernels
 @testable import SceneIO
 @testable import Geometry
 @testable import SceneDescription

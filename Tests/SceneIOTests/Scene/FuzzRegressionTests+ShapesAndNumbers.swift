@@ -6,6 +6,7 @@ import XCTest
 @testable import SceneDescription
 @testable import ExactArithmetic
 @testable import FastEngine
+@testable import FastKernels
 @testable import PlatformSupport
 import TestSupport
 
