@@ -29,6 +29,14 @@ numerics=$(cd "$2" && pwd)
 cd "$(dirname "$0")/.."
 scratch=.build/real-packages
 
+# Named as given (a copy inside this work tree would describe this
+# repository's commit).
+for checkout in "$parser" "$numerics"; do
+  version=$(git -C "$checkout" describe --tags --always 2>/dev/null ||
+    echo "not a git checkout")
+  echo "== $checkout ($version)"
+done
+
 # Each checkout is built from a copy of its own beside the scratch folder,
 # so that a read-only checkout (../shared/packages) is never written to,
 # with the symbolic links that a plain copy of a repository's tree turns
@@ -64,12 +72,6 @@ unset RAYTRACE_PACKAGES RAYTRACE_ARGUMENT_PARSER_PATH RAYTRACE_NUMERICS_PATH
 real() {
   RAYTRACE_PACKAGES="$parser:$numerics" "$@" --scratch-path "$scratch"
 }
-
-for checkout in "$parser" "$numerics"; do
-  version=$(git -C "$checkout" describe --tags --always 2>/dev/null ||
-    echo "not a git checkout")
-  echo "== $checkout ($version)"
-done
 
 echo "== stand-ins: swift build -c release"
 swift build -c release
